@@ -1,0 +1,1 @@
+//! wavy: contact of a soft solid on a rigid wavy surface (Westergaard, WNL, finite elements).
