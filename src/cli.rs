@@ -1,0 +1,173 @@
+//! Argument types and the validation behind the `wavy` command line (kept in the library so
+//! that tests can drive it without a process).
+
+use crate::coefficient_sets;
+use crate::models::{a_over_lambda_at, ModelLaw, PressureLaw, Reading, Westergaard, Wnl};
+use crate::runner::CheckReport;
+use anyhow::{Context, Result};
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// A command-line value out of its allowed range.
+#[derive(Debug, Error)]
+#[error("{flag} = {value} is out of range; allowed: {allowed}")]
+pub struct InputError {
+    pub flag: String,
+    pub value: String,
+    pub allowed: String,
+}
+
+fn input_error(flag: &str, value: impl ToString, allowed: impl ToString) -> InputError {
+    InputError {
+        flag: flag.into(),
+        value: value.to_string(),
+        allowed: allowed.to_string(),
+    }
+}
+
+/// Which law `wavy eval` evaluates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum EvalModel {
+    Westergaard,
+    Wnl,
+}
+
+/// Arguments of `wavy eval`.
+#[derive(Debug, Clone, clap::Args)]
+#[command(group(clap::ArgGroup::new("input").required(true).args(["a_over_lambda", "p_over_estar"])))]
+pub struct EvalArgs {
+    #[arg(long, value_enum)]
+    pub model: EvalModel,
+    /// Reading of Eq. 4 (WNL only): bracket-sq, bracket-2x, literal.
+    #[arg(long, default_value = "bracket-sq")]
+    pub reading: Reading,
+    /// WNL coefficient set.
+    #[arg(long, default_value = "paper-table1")]
+    pub coefficients: String,
+    /// Aspect ratio Δ/λ (> 0).
+    #[arg(long)]
+    pub ar: f64,
+    /// Interfacial shear strength τ_max in MPa (≥ 0).
+    #[arg(long, default_value_t = 0.0)]
+    pub tau_max_mpa: f64,
+    /// Contact half-widths a/λ ∈ [0, 0.5] (forward evaluation).
+    #[arg(long, num_args = 1.., allow_negative_numbers = true)]
+    pub a_over_lambda: Vec<f64>,
+    /// Mean pressures p̄/E* ≥ 0 (inverse evaluation).
+    #[arg(long, num_args = 1.., allow_negative_numbers = true)]
+    pub p_over_estar: Vec<f64>,
+}
+
+/// Runs `wavy eval`: the CSV text it prints, or an [`InputError`] naming the flag.
+pub fn eval(args: &EvalArgs) -> Result<String> {
+    if !(args.ar.is_finite() && args.ar > 0.0) {
+        return Err(input_error("--ar", args.ar, "> 0").into());
+    }
+    if !(args.tau_max_mpa.is_finite() && args.tau_max_mpa >= 0.0) {
+        return Err(input_error("--tau-max-mpa", args.tau_max_mpa, ">= 0").into());
+    }
+    let law = match args.model {
+        EvalModel::Westergaard => ModelLaw::Westergaard(Westergaard::new(args.ar)),
+        EvalModel::Wnl => {
+            let c = coefficient_sets::by_name(&args.coefficients).ok_or_else(|| {
+                input_error(
+                    "--coefficients",
+                    &args.coefficients,
+                    coefficient_sets::NAMES.join(", "),
+                )
+            })?;
+            ModelLaw::Wnl(Wnl::new(args.ar, args.tau_max_mpa, args.reading, c))
+        }
+    };
+    let (model, reading, coefficients) = match args.model {
+        EvalModel::Westergaard => ("westergaard", "", ""),
+        EvalModel::Wnl => ("wnl", args.reading.name(), args.coefficients.as_str()),
+    };
+    let mut out = String::from("model,reading,coefficients,aspect_ratio,tau_max_mpa,a_over_lambda,p_over_estar,extrapolated\n");
+    let mut row = |x: f64, p: f64| {
+        let _ = writeln!(
+            out,
+            "{model},{reading},{coefficients},{},{},{x},{p},{}",
+            args.ar,
+            args.tau_max_mpa,
+            law.is_extrapolated()
+        );
+    };
+    for &x in &args.a_over_lambda {
+        if !(x.is_finite() && (0.0..=0.5).contains(&x)) {
+            return Err(input_error("--a-over-lambda", x, "[0, 0.5]").into());
+        }
+        row(x, law.p_over_estar(x));
+    }
+    for &p in &args.p_over_estar {
+        let full = law.full_contact_p_over_estar();
+        let x = a_over_lambda_at(&law, p).map_err(|e| match e {
+            crate::models::InverseError::NegativeOrNotFinite { .. } => {
+                input_error("--p-over-estar", p, ">= 0")
+            }
+            crate::models::InverseError::AboveFullContact { .. } => input_error(
+                "--p-over-estar",
+                p,
+                format!("[0, {full}] (the full-contact pressure of this model)"),
+            ),
+            other => input_error("--p-over-estar", p, format!("none for this model: {other}")),
+        })?;
+        row(x, p);
+    }
+    Ok(out)
+}
+
+/// The `*.toml` specs of a folder, sorted by name.
+pub fn spec_files(dir: &Path) -> Result<Vec<PathBuf>> {
+    let mut specs: Vec<PathBuf> = std::fs::read_dir(dir)
+        .with_context(|| format!("cannot list {}", dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    specs.sort();
+    if specs.is_empty() {
+        anyhow::bail!("no *.toml spec in {}", dir.display());
+    }
+    Ok(specs)
+}
+
+/// A check report as text: per table, the worst `worst` deviations.
+pub fn format_check_report(r: &CheckReport, worst: usize) -> String {
+    let mut s = String::new();
+    for (file, result) in &r.tables {
+        match result {
+            Err(e) => {
+                let _ = writeln!(s, "FAIL {file}: {e}");
+            }
+            Ok(c) => {
+                let verdict = if c.failures == 0 { "ok  " } else { "FAIL" };
+                let _ = writeln!(
+                    s,
+                    "{verdict} {file}: {} cells, {} numbers, {} outside tolerance",
+                    c.deviations.len(),
+                    c.numbers,
+                    c.failures
+                );
+                let _ = writeln!(
+                    s,
+                    "     {:>6}  {:<28} {:>14} {:>14} {:>11}",
+                    "row", "column", "expected", "computed", "rel. dev."
+                );
+                for d in c.deviations.iter().take(worst) {
+                    let _ = writeln!(
+                        s,
+                        "     {:>6}  {:<28} {:>14} {:>14} {:>11.3e}{}",
+                        d.row,
+                        d.column,
+                        d.expected,
+                        d.found,
+                        d.relative,
+                        if d.pass { "" } else { "  <- outside tolerance" }
+                    );
+                }
+            }
+        }
+    }
+    s
+}

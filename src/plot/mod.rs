@@ -1,0 +1,345 @@
+//! Deterministic SVG figures.
+//!
+//! Text is laid out with the DejaVu Sans font bundled in `assets/fonts/` and registered from
+//! bytes (plotters' `ab_glyph` feature), never with the machine's fonts, and plotters maps
+//! every coordinate to whole pixels: the same data give the same bytes on every machine.
+//! A figure is a grid of [`Panel`]s, each a set of [`Series`] on linear axes.
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::sync::Once;
+use thiserror::Error;
+
+/// Font family every text element uses (the bundled DejaVu Sans).
+pub const FONT: &str = "sans-serif";
+static FONT_BYTES: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+static REGISTER: Once = Once::new();
+
+#[derive(Debug, Error)]
+#[error("drawing failed: {0}")]
+pub struct PlotError(String);
+
+fn err<E: std::fmt::Debug>(e: E) -> PlotError {
+    PlotError(format!("{e:?}"))
+}
+
+fn ensure_font() {
+    REGISTER.call_once(|| {
+        plotters::style::register_font(FONT, FontStyle::Normal, FONT_BYTES).unwrap_or_else(|_| {
+            panic!("the bundled font assets/fonts/DejaVuSans.ttf is not a valid font")
+        });
+    });
+}
+
+/// How a series is drawn.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Style {
+    /// A polyline of `width` pixels, dashed or solid.
+    Line { width: u32, dashed: bool },
+    /// One circle of radius `size` pixels per point.
+    Markers { size: u32, filled: bool },
+    /// A shaded area between `points` (lower edge) and `upper`.
+    Band,
+}
+
+/// One data series of a panel.
+#[derive(Debug, Clone)]
+pub struct Series {
+    /// Legend entry; `None` keeps it out of the legend.
+    pub label: Option<String>,
+    pub color: RGBColor,
+    pub style: Style,
+    pub points: Vec<(f64, f64)>,
+    /// Upper edge of a [`Style::Band`] (same x values as `points`); empty otherwise.
+    pub upper: Vec<(f64, f64)>,
+}
+
+impl Series {
+    pub fn line(
+        label: Option<String>,
+        color: RGBColor,
+        width: u32,
+        points: Vec<(f64, f64)>,
+    ) -> Self {
+        Self {
+            label,
+            color,
+            style: Style::Line {
+                width,
+                dashed: false,
+            },
+            points,
+            upper: vec![],
+        }
+    }
+    pub fn dashed(
+        label: Option<String>,
+        color: RGBColor,
+        width: u32,
+        points: Vec<(f64, f64)>,
+    ) -> Self {
+        Self {
+            label,
+            color,
+            style: Style::Line {
+                width,
+                dashed: true,
+            },
+            points,
+            upper: vec![],
+        }
+    }
+    pub fn markers(
+        label: Option<String>,
+        color: RGBColor,
+        size: u32,
+        points: Vec<(f64, f64)>,
+    ) -> Self {
+        Self {
+            label,
+            color,
+            style: Style::Markers {
+                size,
+                filled: false,
+            },
+            points,
+            upper: vec![],
+        }
+    }
+    pub fn band(
+        label: Option<String>,
+        color: RGBColor,
+        lower: Vec<(f64, f64)>,
+        upper: Vec<(f64, f64)>,
+    ) -> Self {
+        Self {
+            label,
+            color,
+            style: Style::Band,
+            points: lower,
+            upper,
+        }
+    }
+}
+
+/// Where a panel's legend goes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LegendPosition {
+    UpperLeft,
+    UpperRight,
+    LowerLeft,
+    LowerRight,
+}
+
+impl LegendPosition {
+    fn to_plotters(self) -> SeriesLabelPosition {
+        match self {
+            LegendPosition::UpperLeft => SeriesLabelPosition::UpperLeft,
+            LegendPosition::UpperRight => SeriesLabelPosition::UpperRight,
+            LegendPosition::LowerLeft => SeriesLabelPosition::LowerLeft,
+            LegendPosition::LowerRight => SeriesLabelPosition::LowerRight,
+        }
+    }
+}
+
+/// One chart: axes, series, notes written inside the plotting area.
+#[derive(Debug, Clone)]
+pub struct Panel {
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub x_range: (f64, f64),
+    pub y_range: (f64, f64),
+    pub series: Vec<Series>,
+    /// Lines of text drawn at the top left inside the plotting area.
+    pub notes: Vec<String>,
+    pub legend: Option<LegendPosition>,
+}
+
+/// A figure: a caption, a `rows × cols` grid of panels (row-major) and footer lines.
+#[derive(Debug, Clone)]
+pub struct Figure {
+    pub width: u32,
+    pub height: u32,
+    pub caption: String,
+    pub grid: (usize, usize),
+    pub panels: Vec<Panel>,
+    /// Lines of text under the panels (provenance, missing data, extrapolation warnings).
+    pub footer: Vec<String>,
+    /// Font size of titles, labels and notes, px.
+    pub font_px: u32,
+}
+
+/// Colours used across figures, chosen to stay distinct for colour-blind readers (Okabe–Ito).
+pub mod palette {
+    use plotters::style::RGBColor;
+    pub const BLACK: RGBColor = RGBColor(0, 0, 0);
+    pub const GREY: RGBColor = RGBColor(110, 110, 110);
+    pub const VERMILION: RGBColor = RGBColor(213, 94, 0);
+    pub const BLUE: RGBColor = RGBColor(0, 114, 178);
+    pub const GREEN: RGBColor = RGBColor(0, 158, 115);
+    pub const ORANGE: RGBColor = RGBColor(230, 159, 0);
+    pub const SKY: RGBColor = RGBColor(86, 180, 233);
+    pub const PURPLE: RGBColor = RGBColor(204, 121, 167);
+    pub const YELLOW: RGBColor = RGBColor(240, 228, 66);
+    /// A cycle for families of lines.
+    pub const CYCLE: [RGBColor; 7] = [BLUE, VERMILION, GREEN, ORANGE, SKY, PURPLE, BLACK];
+}
+
+/// Renders `figure` to SVG text.
+pub fn render_svg(figure: &Figure) -> Result<String, PlotError> {
+    ensure_font();
+    let mut svg = String::new();
+    {
+        let root =
+            SVGBackend::with_string(&mut svg, (figure.width, figure.height)).into_drawing_area();
+        root.fill(&WHITE).map_err(err)?;
+        let fs = figure.font_px;
+        let root = root
+            .titled(&figure.caption, (FONT, fs + 6).into_font())
+            .map_err(err)?;
+        let footer_h = if figure.footer.is_empty() {
+            0
+        } else {
+            (fs + 6) * figure.footer.len() as u32 + 10
+        };
+        let (body, footer) = root.split_vertically(root.dim_in_pixel().1 - footer_h);
+        for (area, panel) in body.split_evenly(figure.grid).iter().zip(&figure.panels) {
+            draw_panel(area, panel, fs)?;
+        }
+        for (i, line) in figure.footer.iter().enumerate() {
+            footer
+                .draw_text(
+                    line,
+                    &(FONT, fs).into_font().color(&BLACK),
+                    (12, 4 + i as i32 * (fs as i32 + 6)),
+                )
+                .map_err(err)?;
+        }
+        root.present().map_err(err)?;
+    }
+    Ok(svg)
+}
+
+fn draw_panel(
+    area: &DrawingArea<SVGBackend<'_>, Shift>,
+    panel: &Panel,
+    fs: u32,
+) -> Result<(), PlotError> {
+    let mut chart = ChartBuilder::on(area)
+        .caption(&panel.title, (FONT, fs + 2).into_font())
+        .margin(8)
+        .margin_right(24)
+        .x_label_area_size(fs * 2 + 14)
+        .y_label_area_size(fs * 3 + 22)
+        .build_cartesian_2d(
+            panel.x_range.0..panel.x_range.1,
+            panel.y_range.0..panel.y_range.1,
+        )
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc(&panel.x_label)
+        .y_desc(&panel.y_label)
+        .label_style((FONT, fs - 2).into_font())
+        .axis_desc_style((FONT, fs).into_font())
+        .light_line_style(RGBColor(235, 235, 235))
+        .bold_line_style(RGBColor(215, 215, 215))
+        .x_labels(6)
+        .y_labels(6)
+        .draw()
+        .map_err(err)?;
+
+    for s in &panel.series {
+        let color = s.color;
+        let anno = match s.style {
+            Style::Band => {
+                let mut outline = s.points.clone();
+                outline.extend(s.upper.iter().rev().copied());
+                chart
+                    .draw_series(std::iter::once(Polygon::new(
+                        outline,
+                        color.mix(0.22).filled(),
+                    )))
+                    .map_err(err)?
+            }
+            Style::Line {
+                width,
+                dashed: false,
+            } => chart
+                .draw_series(LineSeries::new(
+                    s.points.iter().copied(),
+                    color.stroke_width(width),
+                ))
+                .map_err(err)?,
+            Style::Line {
+                width,
+                dashed: true,
+            } => chart
+                .draw_series(DashedLineSeries::new(
+                    s.points.iter().copied(),
+                    8,
+                    5,
+                    color.stroke_width(width),
+                ))
+                .map_err(err)?,
+            Style::Markers { size, filled } => {
+                let style = if filled {
+                    color.filled()
+                } else {
+                    color.stroke_width(2)
+                };
+                chart
+                    .draw_series(s.points.iter().map(|&p| Circle::new(p, size, style)))
+                    .map_err(err)?
+            }
+        };
+        if let Some(label) = &s.label {
+            let style = s.style;
+            anno.label(label).legend(
+                move |(x, y)| -> DynElement<'static, SVGBackend, (i32, i32)> {
+                    match style {
+                        Style::Markers { size, .. } => {
+                            Circle::new((x + 10, y), size, color.stroke_width(2)).into_dyn()
+                        }
+                        Style::Band => {
+                            Rectangle::new([(x, y - 5), (x + 20, y + 5)], color.mix(0.22).filled())
+                                .into_dyn()
+                        }
+                        Style::Line { width, .. } => {
+                            PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(width))
+                                .into_dyn()
+                        }
+                    }
+                },
+            );
+        }
+    }
+    if let Some(pos) = panel.legend {
+        chart
+            .configure_series_labels()
+            .position(pos.to_plotters())
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(160, 160, 160))
+            .label_font((FONT, fs - 2).into_font())
+            .draw()
+            .map_err(err)?;
+    }
+    let plot = chart.plotting_area();
+    let (x0, y0) = (panel.x_range.0, panel.y_range.1);
+    let origin = plot.map_coordinate(&(x0, y0));
+    for (i, note) in panel.notes.iter().enumerate() {
+        let pos = (origin.0 + 8, origin.1 + 6 + i as i32 * (fs as i32 + 2));
+        plot.strip_coord_spec()
+            .draw_text(
+                note,
+                &(FONT, fs - 1).into_font().color(&BLACK),
+                (
+                    pos.0 - plot.get_base_pixel().0,
+                    pos.1 - plot.get_base_pixel().1,
+                ),
+            )
+            .map_err(err)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,149 @@
+//! Paper Fig. 2: the correction surfaces A(AR, τ_max) and B(AR, τ_max), as families of lines
+//! a reader can read values off, with the finite-element aspect ratios emphasised.
+
+use crate::coefficient_sets;
+use crate::models::wnl::quadratic_surface;
+use crate::plot::{palette, Figure, LegendPosition, Panel, Series};
+use crate::spec::CorrectionSurfacesScene;
+use crate::table::Table;
+use anyhow::Result;
+
+pub(super) fn run(
+    title: &str,
+    s: &CorrectionSurfacesScene,
+) -> Result<(Vec<Table>, Figure, Vec<String>)> {
+    let c = coefficient_sets::by_name(&s.coefficients).expect("validated when the spec is parsed");
+    let ars = s.aspect_ratio.values();
+    let taus = s.tau_max_mpa.values();
+
+    let mut table = Table::new(
+        "",
+        &[
+            "aspect_ratio",
+            "tau_max_mpa",
+            "correction_a",
+            "correction_b",
+            "extrapolated",
+        ],
+    );
+    let mut any_extrapolated = false;
+    for &ar in &ars {
+        for &tau in &taus {
+            let extrapolated = !c.domain.contains(ar, tau);
+            any_extrapolated |= extrapolated;
+            table.push(vec![
+                ar.into(),
+                tau.into(),
+                quadratic_surface(&c.a, ar, tau).into(),
+                quadratic_surface(&c.b, ar, tau).into(),
+                extrapolated.into(),
+            ]);
+        }
+    }
+
+    let marked: Vec<f64> = s.marked_aspect_ratios.iter().map(|v| v.get()).collect();
+    let is_marked = |ar: f64| {
+        marked
+            .iter()
+            .any(|m| (m - ar).abs() <= 1e-12 * m.abs().max(1.0))
+    };
+    let mut panels = vec![];
+    for (name, coeffs) in [("A", &c.a), ("B", &c.b)] {
+        // Against τ_max, one line per aspect ratio; the FE ones solid and thick.
+        let mut vs_tau = vec![];
+        for (k, ar) in s.line_aspect_ratios.iter().map(|v| v.get()).enumerate() {
+            let pts: Vec<(f64, f64)> = taus
+                .iter()
+                .map(|&t| (t, quadratic_surface(coeffs, ar, t)))
+                .collect();
+            let color = palette::CYCLE[k % palette::CYCLE.len()];
+            let label = Some(format!(
+                "AR = {ar}{}",
+                if is_marked(ar) { " (FE)" } else { "" }
+            ));
+            vs_tau.push(if is_marked(ar) {
+                Series::line(label, color, 3, pts)
+            } else {
+                Series::dashed(label, color, 1, pts)
+            });
+        }
+        // Against AR, one line per τ_max, with the FE aspect ratios as vertical guides.
+        let mut vs_ar = vec![];
+        for (k, tau) in s.line_tau_max_mpa.iter().map(|v| v.get()).enumerate() {
+            let pts: Vec<(f64, f64)> = ars
+                .iter()
+                .map(|&r| (r, quadratic_surface(coeffs, r, tau)))
+                .collect();
+            let color = palette::CYCLE[k % palette::CYCLE.len()];
+            vs_ar.push(Series::line(
+                Some(format!("τ_max = {tau} MPa")),
+                color,
+                2,
+                pts,
+            ));
+        }
+        let all = |series: &[Series]| {
+            series
+                .iter()
+                .flat_map(|s| s.points.iter().map(|p| p.1))
+                .collect::<Vec<_>>()
+        };
+        let y_tau = super::padded_range(all(&vs_tau));
+        let y_ar = super::padded_range(all(&vs_ar));
+        for (i, &m) in marked.iter().enumerate() {
+            let label = (i == 0).then(|| "FE aspect ratios".to_string());
+            vs_ar.push(Series::dashed(
+                label,
+                palette::GREY,
+                1,
+                vec![(m, y_ar.0), (m, y_ar.1)],
+            ));
+        }
+        let x_tau = (taus[0], taus[taus.len() - 1]);
+        let x_ar = (ars[0], ars[ars.len() - 1]);
+        panels.push(Panel {
+            title: format!("{name}(AR, τ_max) against τ_max"),
+            x_label: "τ_max (MPa)".into(),
+            y_label: name.into(),
+            x_range: x_tau,
+            y_range: y_tau,
+            series: vs_tau,
+            notes: vec![],
+            legend: Some(LegendPosition::LowerLeft),
+        });
+        panels.push(Panel {
+            title: format!("{name}(AR, τ_max) against AR"),
+            x_label: "AR = Δ/λ".into(),
+            y_label: name.into(),
+            x_range: x_ar,
+            y_range: y_ar,
+            series: vs_ar,
+            notes: vec![],
+            legend: Some(LegendPosition::LowerLeft),
+        });
+    }
+
+    let d = c.domain;
+    let mut footer = vec![format!(
+        "Coefficients: {}. Fit domain AR ∈ [{}, {}], τ_max ∈ [{}, {}] MPa; τ_max enters in MPa, as in the paper.",
+        s.coefficients, d.aspect_ratio_min, d.aspect_ratio_max, d.tau_max_mpa_min, d.tau_max_mpa_max
+    )];
+    let mut notes = vec![];
+    if any_extrapolated {
+        let note = "Part of the grid lies outside the fit domain: those values are extrapolations \
+                    (column `extrapolated` of the CSV)."
+            .to_string();
+        footer.push(note.clone());
+        notes.push(note);
+    }
+    let figure = Figure {
+        width: 1400,
+        height: 1100,
+        caption: title.into(),
+        grid: (2, 2),
+        panels,
+        footer,
+        font_px: 18,
+    };
+    Ok((vec![table], figure, notes))
+}

@@ -1,0 +1,94 @@
+//! Measured load–area points with their provenance (schema: `experiments/data/README.md`).
+//!
+//! A data file starts with `# key: value` lines that must name `source`, `source_figure`,
+//! `digitised_by` and `method`, followed by CSV with the header `load_n,area_mm2`.
+
+use anyhow::{bail, Context, Result};
+use std::path::Path;
+
+/// Keys every data file must state.
+pub const REQUIRED_PROVENANCE: [&str; 4] = ["source", "source_figure", "digitised_by", "method"];
+
+/// Points and where they come from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeasuredPoints {
+    /// (key, value) provenance lines, in file order.
+    pub provenance: Vec<(String, String)>,
+    /// (load in N, area in mm²).
+    pub points: Vec<(f64, f64)>,
+}
+
+impl MeasuredPoints {
+    pub fn provenance(&self, key: &str) -> Option<&str> {
+        self.provenance
+            .iter()
+            .find(|(k, _)| k == key)
+            .map(|(_, v)| v.as_str())
+    }
+}
+
+/// Reads a data file; `Ok(None)` when there is no file at `path`.
+pub fn read(path: &Path) -> Result<Option<MeasuredPoints>> {
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(e).with_context(|| format!("cannot read {}", path.display())),
+    };
+    parse(&text)
+        .with_context(|| format!("{}", path.display()))
+        .map(Some)
+}
+
+/// Parses the text of a data file.
+pub fn parse(text: &str) -> Result<MeasuredPoints> {
+    let mut provenance = vec![];
+    let mut body = String::new();
+    for line in text.lines() {
+        if let Some(rest) = line.strip_prefix('#') {
+            if let Some((k, v)) = rest.split_once(':') {
+                provenance.push((k.trim().to_string(), v.trim().to_string()));
+            }
+        } else {
+            body.push_str(line);
+            body.push('\n');
+        }
+    }
+    for key in REQUIRED_PROVENANCE {
+        if !provenance.iter().any(|(k, v)| k == key && !v.is_empty()) {
+            bail!(
+                "provenance line `# {key}: …` is missing; required: {}",
+                REQUIRED_PROVENANCE.join(", ")
+            );
+        }
+    }
+    let mut r = csv::Reader::from_reader(body.as_bytes());
+    let header: Vec<String> = r.headers()?.iter().map(String::from).collect();
+    if header != ["load_n", "area_mm2"] {
+        bail!(
+            "header is `{}`; expected `load_n,area_mm2`",
+            header.join(",")
+        );
+    }
+    let mut points = vec![];
+    for (i, rec) in r.records().enumerate() {
+        let rec = rec?;
+        let value = |j: usize, name: &str| -> Result<f64> {
+            let v: f64 = rec[j]
+                .trim()
+                .parse()
+                .with_context(|| format!("data row {}: `{name}` is not a number", i + 1))?;
+            if !(v.is_finite() && v >= 0.0) {
+                bail!(
+                    "data row {}: `{name}` = {v} is out of range; allowed: >= 0",
+                    i + 1
+                );
+            }
+            Ok(v)
+        };
+        points.push((value(0, "load_n")?, value(1, "area_mm2")?));
+    }
+    if points.is_empty() {
+        bail!("the file holds no data rows");
+    }
+    Ok(MeasuredPoints { provenance, points })
+}

@@ -1,0 +1,218 @@
+//! Runs a spec's scene: computes its tables and figure in memory, then writes them atomically.
+//!
+//! A run computes everything before it writes anything, and every file is written to a
+//! temporary file in the target folder and renamed into place, so that a failed or
+//! interrupted run never leaves a partial CSV or SVG behind.
+
+mod correction_surfaces;
+mod fe_vs_model;
+mod fingertip_area;
+pub mod measured;
+
+use crate::coefficient_sets;
+use crate::models::{ModelLaw, Westergaard, Wnl};
+use crate::spec::{ModelName, ModelSelection, Scene, Spec};
+use crate::table::{Comparison, Table};
+use anyhow::{Context, Result};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// What a scene produces: its tables, its SVG, and notes for the run's output.
+#[derive(Debug, Clone)]
+pub struct SceneOutput {
+    /// File stem of every output (`figures/<stem>.svg`, `figures/<stem>.csv`, …).
+    pub stem: String,
+    pub tables: Vec<Table>,
+    pub svg: String,
+    /// Things the reader must know (missing data, extrapolation), printed by the CLI.
+    pub notes: Vec<String>,
+}
+
+/// Reads, parses and runs the spec at `path`; the output stem is the file stem.
+pub fn run_spec_file(path: &Path) -> Result<SceneOutput> {
+    let spec = load_spec(path)?;
+    run_spec(
+        &spec,
+        &stem_of(path)?,
+        path.parent().unwrap_or(Path::new(".")),
+    )
+}
+
+/// Reads and parses the spec at `path`.
+pub fn load_spec(path: &Path) -> Result<Spec> {
+    let origin = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| crate::spec::SpecError::Read {
+        origin: origin.clone(),
+        message: e.to_string(),
+    })?;
+    Ok(Spec::parse(&text, &origin)?)
+}
+
+fn stem_of(path: &Path) -> Result<String> {
+    path.file_stem()
+        .and_then(|s| s.to_str())
+        .map(String::from)
+        .with_context(|| {
+            format!(
+                "{}: the spec's file name is not valid UTF-8",
+                path.display()
+            )
+        })
+}
+
+/// Runs a parsed spec. `spec_dir` resolves the spec's relative data paths.
+pub fn run_spec(spec: &Spec, stem: &str, spec_dir: &Path) -> Result<SceneOutput> {
+    let (tables, figure, notes) = match spec.scene() {
+        Scene::CorrectionSurfaces(s) => correction_surfaces::run(&spec.title, s)?,
+        Scene::FeVsModel(s) => fe_vs_model::run(&spec.title, s)?,
+        Scene::FingertipArea(s) => fingertip_area::run(&spec.title, s, spec_dir)?,
+    };
+    let svg = crate::plot::render_svg(&figure)?;
+    Ok(SceneOutput {
+        stem: stem.into(),
+        tables,
+        svg,
+        notes,
+    })
+}
+
+/// Writes a scene's SVG and CSVs into `dir`, each atomically; returns the paths written.
+pub fn write_outputs(out: &SceneOutput, dir: &Path) -> Result<Vec<PathBuf>> {
+    let mut files: Vec<(PathBuf, &[u8])> =
+        vec![(dir.join(format!("{}.svg", out.stem)), out.svg.as_bytes())];
+    let csvs: Vec<(PathBuf, String)> = out
+        .tables
+        .iter()
+        .map(|t| (dir.join(t.file_name(&out.stem)), t.to_csv()))
+        .collect();
+    files.extend(csvs.iter().map(|(p, s)| (p.clone(), s.as_bytes())));
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    for (path, bytes) in &files {
+        write_atomic(path, bytes)?;
+    }
+    Ok(files.into_iter().map(|(p, _)| p).collect())
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same folder and a rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let mut tmp = tempfile::NamedTempFile::new_in(dir)
+        .with_context(|| format!("cannot write in {}", dir.display()))?;
+    tmp.write_all(bytes)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        // tempfile creates 0600 files; outputs are ordinary, readable files.
+        tmp.as_file()
+            .set_permissions(std::fs::Permissions::from_mode(0o644))
+            .ok();
+    }
+    tmp.as_file().sync_all().ok();
+    tmp.persist(path)
+        .with_context(|| format!("cannot replace {}", path.display()))?;
+    Ok(())
+}
+
+/// A scene's tables compared with their golden files in `expected_dir`.
+#[derive(Debug)]
+pub struct CheckReport {
+    pub stem: String,
+    pub tables: Vec<(String, Result<Comparison, String>)>,
+}
+
+impl CheckReport {
+    pub fn passed(&self) -> bool {
+        self.tables
+            .iter()
+            .all(|(_, r)| matches!(r, Ok(c) if c.failures == 0))
+    }
+}
+
+/// Recomputes the spec at `path` and compares each table with `expected_dir/<file>.csv`
+/// within the spec's `[check]` tolerances.
+pub fn check_spec_file(path: &Path, expected_dir: &Path) -> Result<CheckReport> {
+    let spec = load_spec(path)?;
+    let out = run_spec(
+        &spec,
+        &stem_of(path)?,
+        path.parent().unwrap_or(Path::new(".")),
+    )?;
+    let (rel, abs) = (spec.check.rel_tol.get(), spec.check.abs_tol.get());
+    let tables = out
+        .tables
+        .iter()
+        .map(|t| {
+            let file = t.file_name(&out.stem);
+            let golden = expected_dir.join(&file);
+            let result = std::fs::read_to_string(&golden)
+                .map_err(|e| format!("cannot read {}: {e}", golden.display()))
+                .and_then(|text| {
+                    t.compare(&text, rel, abs)
+                        .map_err(|e| format!("{}: {e}", golden.display()))
+                });
+            (file, result)
+        })
+        .collect();
+    Ok(CheckReport {
+        stem: out.stem,
+        tables,
+    })
+}
+
+/// The laws a model selection draws at one (AR, τ_max), in the order of `draw`.
+pub(crate) fn model_laws(
+    sel: &ModelSelection,
+    aspect_ratio: f64,
+    tau_max_mpa: f64,
+) -> Vec<(ModelName, ModelLaw)> {
+    let coefficients = coefficient_sets::by_name(&sel.coefficients)
+        .expect("coefficient set names are validated when the spec is parsed");
+    sel.draw
+        .iter()
+        .map(|&name| {
+            let law = match name {
+                ModelName::Westergaard => ModelLaw::Westergaard(Westergaard::new(aspect_ratio)),
+                ModelName::Wnl => ModelLaw::Wnl(Wnl::new(
+                    aspect_ratio,
+                    tau_max_mpa,
+                    sel.reading,
+                    coefficients,
+                )),
+            };
+            (name, law)
+        })
+        .collect()
+}
+
+/// A model's column/legend name.
+pub(crate) fn model_key(name: ModelName) -> &'static str {
+    match name {
+        ModelName::Westergaard => "westergaard",
+        ModelName::Wnl => "wnl",
+    }
+}
+
+/// Lower and upper plot limits that enclose `values` with a 5% margin (0 kept as a floor
+/// when every value is non-negative).
+pub(crate) fn padded_range(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = values
+        .into_iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    if !lo.is_finite() {
+        return (0.0, 1.0);
+    }
+    let span = (hi - lo).max(1e-12 * hi.abs().max(1.0));
+    let lo = if lo >= 0.0 && lo - 0.05 * span < 0.0 {
+        0.0
+    } else {
+        lo - 0.05 * span
+    };
+    (lo, hi + 0.05 * span)
+}
