@@ -9,17 +9,27 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
-/// A command-line value out of its allowed range.
+/// A command-line value that cannot be used.
 #[derive(Debug, Error)]
-#[error("{flag} = {value} is out of range; allowed: {allowed}")]
-pub struct InputError {
-    pub flag: String,
-    pub value: String,
-    pub allowed: String,
+pub enum InputError {
+    /// Outside its physical range.
+    #[error("{flag} = {value} is out of range; allowed: {allowed}")]
+    OutOfRange {
+        flag: String,
+        value: String,
+        allowed: String,
+    },
+    /// In range, but the selected model cannot be inverted there.
+    #[error("{flag} = {value}: no contact half-width: {reason}")]
+    NotInvertible {
+        flag: String,
+        value: String,
+        reason: String,
+    },
 }
 
 fn input_error(flag: &str, value: impl ToString, allowed: impl ToString) -> InputError {
-    InputError {
+    InputError::OutOfRange {
         flag: flag.into(),
         value: value.to_string(),
         allowed: allowed.to_string(),
@@ -46,10 +56,10 @@ pub struct EvalArgs {
     #[arg(long, default_value = "paper-table1")]
     pub coefficients: String,
     /// Aspect ratio Δ/λ (> 0).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub ar: f64,
     /// Interfacial shear strength τ_max in MPa (≥ 0).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub tau_max_mpa: f64,
     /// Contact half-widths a/λ ∈ [0, 0.5] (forward evaluation).
     #[arg(long, num_args = 1.., allow_negative_numbers = true)]
@@ -111,7 +121,11 @@ pub fn eval(args: &EvalArgs) -> Result<String> {
                 p,
                 format!("[0, {full}] (the full-contact pressure of this model)"),
             ),
-            other => input_error("--p-over-estar", p, format!("none for this model: {other}")),
+            other => InputError::NotInvertible {
+                flag: "--p-over-estar".into(),
+                value: p.to_string(),
+                reason: other.to_string(),
+            },
         })?;
         row(x, p);
     }

@@ -92,3 +92,42 @@ pub fn parse(text: &str) -> Result<MeasuredPoints> {
     }
     Ok(MeasuredPoints { provenance, points })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // Parser fixtures only: these numbers are not measurements and never reach a figure.
+    const HEAD: &str = "# source: fixture\n# source_figure: none\n# digitised_by: nobody\n# method: typed for a parser test\n";
+
+    #[test]
+    fn reads_provenance_and_points() {
+        let m = parse(&format!("{HEAD}load_n,area_mm2\n1,2\n3.5,4\n")).unwrap();
+        assert_eq!(m.points, vec![(1.0, 2.0), (3.5, 4.0)]);
+        assert_eq!(m.provenance("digitised_by"), Some("nobody"));
+    }
+
+    #[test]
+    fn refuses_missing_provenance_wrong_header_and_bad_values() {
+        let e = parse("# source: x\nload_n,area_mm2\n1,2\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`# source_figure: …` is missing"), "{e}");
+        let e = parse(&format!("{HEAD}force,area\n1,2\n"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("expected `load_n,area_mm2`"), "{e}");
+        let e = format!(
+            "{:#}",
+            parse(&format!("{HEAD}load_n,area_mm2\n1,-2\n")).unwrap_err()
+        );
+        assert!(
+            e.contains("data row 1: `area_mm2` = -2 is out of range; allowed: >= 0"),
+            "{e}"
+        );
+        let e = parse(&format!("{HEAD}load_n,area_mm2\n"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("no data rows"), "{e}");
+    }
+}

@@ -1,0 +1,36 @@
+# wavy — every figure and number from experiments/*.toml.
+# Needs only cargo (the toolchain is pinned in rust-toolchain.toml); crates come from crates.io.
+
+CARGO ?= cargo
+export CARGO_TERM_COLOR ?= never
+
+.PHONY: all reproduce test lint check bless bench clean
+
+all: reproduce
+
+## Rebuild every figure (figures/*.svg) and the numbers behind it (figures/*.csv).
+reproduce:
+	$(CARGO) run --release --locked --quiet -- reproduce
+
+## Every test (release mode: the finite-element tests need it), after formatting and lints.
+test: lint
+	INSTA_UPDATE=no $(CARGO) test --release --locked
+
+lint:
+	$(CARGO) fmt --check
+	$(CARGO) clippy --release --locked --all-targets --quiet -- -D warnings
+
+## Recompute every spec and compare with expected/ within each spec's [check] tolerances.
+check:
+	$(CARGO) run --release --locked --quiet -- check
+
+## Accept the current numbers as golden: copy figures/*.csv into expected/ (review the diff!).
+bless: reproduce
+	cp figures/*.csv expected/
+
+## Timings (medians) of the solver and the model laws.
+bench:
+	$(CARGO) bench --locked
+
+clean:
+	$(CARGO) clean
