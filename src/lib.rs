@@ -7,6 +7,7 @@
 pub mod cli;
 pub mod coefficient_sets;
 pub mod defaults;
+pub mod fit;
 pub mod models;
 pub mod numfmt;
 pub mod plot;

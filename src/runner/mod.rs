@@ -8,6 +8,7 @@ mod correction_surfaces;
 mod fe_vs_model;
 mod fingertip_area;
 pub mod measured;
+pub mod sweep;
 
 use crate::coefficient_sets;
 use crate::models::{ModelLaw, Westergaard, Wnl};
