@@ -1,0 +1,229 @@
+//! Bilinear quadrilateral (Q1) with the mean-dilatation (Q1/P0) volumetric energy.
+//!
+//! Element energy (reference area `V_e`, current area `v_e`):
+//!
+//! ```text
+//! Π_e = ∫_{Ω_e} G/2 (J^(−2/3) tr C − 3) dV  +  V_e κ/2 (v_e/V_e − 1)²
+//! ```
+//!
+//! The isochoric integral uses 2×2 Gauss quadrature. `v_e` is the exact area of the
+//! current bilinear quad (shoelace formula of its four corners):
+//!
+//! ```text
+//! v = ½ Σ_k (x_k y_{k+1} − x_{k+1} y_k)
+//! ∂v/∂x_k = ½ (y_{k+1} − y_{k−1}),   ∂v/∂y_k = ½ (x_{k−1} − x_{k+1})
+//! ∂²v/∂x_k∂y_{k+1} = ½,  ∂²v/∂x_k∂y_{k−1} = −½   (all other second derivatives 0)
+//! ```
+//!
+//! so the volumetric gradient is `κ (v/V − 1) ∇v` and its Hessian
+//! `κ/V ∇v ∇vᵀ + κ (v/V − 1) ∇²v`.
+//!
+//! Why this choice: a single constant dilatation per element is exactly the Q1/P0
+//! (mean-dilatation) mixed element with the pressure condensed out, which is free of
+//! volumetric locking for `κ/G` up to 10⁴ and beyond (see `tests/fe_locking.rs`),
+//! and it keeps the problem a pure-displacement minimisation with a symmetric
+//! Hessian, which the exact nonlinear contact elimination and energy line search rely
+//! on. Continuous-pressure Taylor–Hood elements were avoided because of the surface
+//! folds reported for them on this problem.
+//!
+//! Inversion: the element is declared inverted (energy `+∞`, functions return `None`)
+//! if any of the four corner Jacobians is non-positive (for a bilinear map, the
+//! Jacobian determinant is bilinear in the parent coordinates, so positive corners
+//! imply a positive Jacobian everywhere), or any Gauss-point `J ≤ 0`, or `v_e ≤ 0`.
+
+use super::material::NeoHooke;
+
+const GP: f64 = 0.577_350_269_189_625_8; // 1/√3
+
+/// Reference data of one quad: shape-function gradients at the Gauss points.
+#[derive(Clone, Debug)]
+pub struct QuadRef {
+    /// `dn[g][a] = ∂N_a/∂X` at Gauss point `g`.
+    pub dn: [[[f64; 2]; 4]; 4],
+    /// Gauss weight times reference Jacobian determinant.
+    pub wdet: [f64; 4],
+    /// Reference area `V_e`.
+    pub area: f64,
+}
+
+/// Energy, gradient and Hessian of one element with respect to its 8 current
+/// coordinates ordered `(x₀, y₀, x₁, y₁, …)`.
+#[derive(Clone, Debug)]
+pub struct ElementTangent {
+    /// Element energy.
+    pub energy: f64,
+    /// Gradient (internal nodal forces).
+    pub grad: [f64; 8],
+    /// Hessian (tangent stiffness), row-major.
+    pub hess: [[f64; 8]; 8],
+}
+
+impl QuadRef {
+    /// Build from the four reference corners, counter-clockwise.
+    pub fn new(xr: &[[f64; 2]; 4]) -> Self {
+        let pts = [(-GP, -GP), (GP, -GP), (GP, GP), (-GP, GP)];
+        let mut dn = [[[0.0; 2]; 4]; 4];
+        let mut wdet = [0.0; 4];
+        for (g, &(xi, eta)) in pts.iter().enumerate() {
+            let dxi = [
+                -(1.0 - eta) / 4.0,
+                (1.0 - eta) / 4.0,
+                (1.0 + eta) / 4.0,
+                -(1.0 + eta) / 4.0,
+            ];
+            let deta = [
+                -(1.0 - xi) / 4.0,
+                -(1.0 + xi) / 4.0,
+                (1.0 + xi) / 4.0,
+                (1.0 - xi) / 4.0,
+            ];
+            let mut jm = [[0.0; 2]; 2];
+            for a in 0..4 {
+                jm[0][0] += xr[a][0] * dxi[a];
+                jm[0][1] += xr[a][0] * deta[a];
+                jm[1][0] += xr[a][1] * dxi[a];
+                jm[1][1] += xr[a][1] * deta[a];
+            }
+            let det = jm[0][0] * jm[1][1] - jm[0][1] * jm[1][0];
+            let inv = [
+                [jm[1][1] / det, -jm[0][1] / det],
+                [-jm[1][0] / det, jm[0][0] / det],
+            ];
+            for a in 0..4 {
+                // ∂N/∂X_J = ∂N/∂ξ_m (J⁻¹)_mJ
+                dn[g][a][0] = dxi[a] * inv[0][0] + deta[a] * inv[1][0];
+                dn[g][a][1] = dxi[a] * inv[0][1] + deta[a] * inv[1][1];
+            }
+            wdet[g] = det;
+        }
+        Self {
+            dn,
+            wdet,
+            area: shoelace(xr),
+        }
+    }
+
+    fn deformation_gradient(&self, g: usize, x: &[[f64; 2]; 4]) -> [[f64; 2]; 2] {
+        let mut f = [[0.0; 2]; 2];
+        for a in 0..4 {
+            for i in 0..2 {
+                for jj in 0..2 {
+                    f[i][jj] += x[a][i] * self.dn[g][a][jj];
+                }
+            }
+        }
+        f
+    }
+}
+
+/// Shoelace area of a quad with corners counter-clockwise.
+pub fn shoelace(x: &[[f64; 2]; 4]) -> f64 {
+    let mut v = 0.0;
+    for k in 0..4 {
+        let n = (k + 1) % 4;
+        v += x[k][0] * x[n][1] - x[n][0] * x[k][1];
+    }
+    0.5 * v
+}
+
+/// True when every corner Jacobian of the current quad is positive.
+pub fn corners_ok(x: &[[f64; 2]; 4]) -> bool {
+    (0..4).all(|k| {
+        let n = x[(k + 1) % 4];
+        let p = x[(k + 3) % 4];
+        let e1 = [n[0] - x[k][0], n[1] - x[k][1]];
+        let e2 = [p[0] - x[k][0], p[1] - x[k][1]];
+        let c = e1[0] * e2[1] - e1[1] * e2[0];
+        c > 0.0 && c.is_finite()
+    })
+}
+
+/// Element energy; `None` if the element is inverted.
+pub fn energy(q: &QuadRef, mat: &NeoHooke, x: &[[f64; 2]; 4]) -> Option<f64> {
+    if !corners_ok(x) {
+        return None;
+    }
+    let mut e = 0.0;
+    for g in 0..4 {
+        let f = q.deformation_gradient(g, x);
+        e += q.wdet[g] * mat.iso_energy(&f)?;
+    }
+    let v = shoelace(x);
+    if v <= 0.0 {
+        return None;
+    }
+    let r = v / q.area - 1.0;
+    Some(e + 0.5 * mat.kappa * q.area * r * r)
+}
+
+/// Element energy, gradient and Hessian; `None` if the element is inverted.
+#[allow(non_snake_case)]
+pub fn tangent(q: &QuadRef, mat: &NeoHooke, x: &[[f64; 2]; 4]) -> Option<ElementTangent> {
+    if !corners_ok(x) {
+        return None;
+    }
+    let mut energy = 0.0;
+    let mut grad = [0.0; 8];
+    let mut hess = [[0.0; 8]; 8];
+    for g in 0..4 {
+        let f = q.deformation_gradient(g, x);
+        let resp = mat.iso_response(&f, true)?;
+        let w = q.wdet[g];
+        energy += w * resp.w;
+        let dn = &q.dn[g];
+        for a in 0..4 {
+            for i in 0..2 {
+                grad[2 * a + i] += w * (resp.p[i][0] * dn[a][0] + resp.p[i][1] * dn[a][1]);
+            }
+        }
+        // B_aiJ... : hess[a i][b k] = Σ_JL dN_a/dX_J A_iJkL dN_b/dX_L
+        for a in 0..4 {
+            for i in 0..2 {
+                // t[k][L] = Σ_J dn[a][J] A[i][J][k][L]
+                let mut t = [[0.0; 2]; 2];
+                for (k, tk) in t.iter_mut().enumerate() {
+                    for (l, tkl) in tk.iter_mut().enumerate() {
+                        *tkl = dn[a][0] * resp.a[i][0][k][l] + dn[a][1] * resp.a[i][1][k][l];
+                    }
+                }
+                for b in 0..4 {
+                    for k in 0..2 {
+                        hess[2 * a + i][2 * b + k] += w * (t[k][0] * dn[b][0] + t[k][1] * dn[b][1]);
+                    }
+                }
+            }
+        }
+    }
+    // mean-dilatation volumetric part
+    let v = shoelace(x);
+    if v <= 0.0 {
+        return None;
+    }
+    let V = q.area;
+    let r = v / V - 1.0;
+    energy += 0.5 * mat.kappa * V * r * r;
+    let mut dv = [0.0; 8];
+    for k in 0..4 {
+        let n = (k + 1) % 4;
+        let p = (k + 3) % 4;
+        dv[2 * k] = 0.5 * (x[n][1] - x[p][1]);
+        dv[2 * k + 1] = 0.5 * (x[p][0] - x[n][0]);
+    }
+    let kr = mat.kappa * r;
+    let kv = mat.kappa / V;
+    for a in 0..8 {
+        grad[a] += kr * dv[a];
+        for b in 0..8 {
+            hess[a][b] += kv * dv[a] * dv[b];
+        }
+    }
+    for k in 0..4 {
+        let n = (k + 1) % 4;
+        let p = (k + 3) % 4;
+        hess[2 * k][2 * n + 1] += 0.5 * kr;
+        hess[2 * n + 1][2 * k] += 0.5 * kr;
+        hess[2 * k][2 * p + 1] -= 0.5 * kr;
+        hess[2 * p + 1][2 * k] -= 0.5 * kr;
+    }
+    Some(ElementTangent { energy, grad, hess })
+}

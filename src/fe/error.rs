@@ -1,0 +1,78 @@
+//! Typed errors of the finite-element solver.
+
+/// Why a curve could not be completed (or started).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SolveError {
+    /// An input is outside its allowed range.
+    #[error("invalid input: {field} = {value} (allowed: {allowed})")]
+    InvalidInput {
+        /// Field name.
+        field: &'static str,
+        /// Offending value.
+        value: f64,
+        /// Allowed range, in words.
+        allowed: &'static str,
+    },
+    /// Newton's method did not converge even after the maximum number of step cuts.
+    #[error("Newton diverged at load step {step} (slab displacement d/λ = {slab_displacement_over_lambda:.6e}), iteration {iteration}, residual norm {residual:.3e}: {reason}")]
+    NewtonDiverged {
+        /// Load step (1-based) that failed.
+        step: usize,
+        /// Newton iteration at which it gave up.
+        iteration: usize,
+        /// Residual norm (∞-norm, units `G λ`) at that iteration.
+        residual: f64,
+        /// Trial slab displacement.
+        slab_displacement_over_lambda: f64,
+        /// What went wrong in the last attempt.
+        reason: String,
+    },
+    /// Every trial configuration had an inverted element (J ≤ 0) even after the
+    /// maximum number of step cuts.
+    #[error("element inversion (J <= 0) at load step {step}, iteration {iteration}, residual norm {residual:.3e}")]
+    Inverted {
+        /// Load step (1-based).
+        step: usize,
+        /// Newton iteration.
+        iteration: usize,
+        /// Residual norm at the last valid iterate.
+        residual: f64,
+    },
+    /// The contact active set did not settle.
+    #[error("contact active set did not settle at load step {step} after {iterations} updates")]
+    ActiveSetCycling {
+        /// Load step (1-based).
+        step: usize,
+        /// Active-set updates performed.
+        iterations: usize,
+    },
+    /// The sparse factorisation failed.
+    #[error("sparse solve failed at load step {step}, iteration {iteration}: {message}")]
+    LinearSolve {
+        /// Load step.
+        step: usize,
+        /// Newton iteration.
+        iteration: usize,
+        /// faer's message.
+        message: String,
+    },
+    /// The load-step budget was exhausted before reaching the target contact width.
+    #[error("maximum number of load steps ({steps}) reached at a/λ = {a_over_lambda:.4}")]
+    TooManySteps {
+        /// Steps taken.
+        steps: usize,
+        /// Contact half-width reached.
+        a_over_lambda: f64,
+    },
+}
+
+/// A failed curve: the error and the points converged before it.
+#[derive(Debug, Clone, thiserror::Error)]
+#[error("{error} (after {} converged points)", points.len())]
+pub struct CurveFailure {
+    /// What stopped the solve.
+    #[source]
+    pub error: SolveError,
+    /// Points converged so far.
+    pub points: Vec<super::CurvePoint>,
+}

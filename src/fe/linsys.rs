@@ -1,0 +1,149 @@
+//! Sparse tangent matrix with a fixed pattern and a direct solve through faer.
+//!
+//! Every node owns two equation slots (`2i`, `2i+1`) whatever its constraint status;
+//! constrained slots get an identity row/column. The sparsity pattern therefore never
+//! changes during a solve, so the symbolic LU factorisation (fill-reducing ordering,
+//! elimination structure) is computed once and reused for every numeric
+//! factorisation. LU rather than Cholesky is used because the reduced Hessian is not
+//! guaranteed positive definite far from equilibrium and because the frictional
+//! extension has a non-symmetric tangent.
+
+use faer::linalg::solvers::Solve;
+use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::ColMut;
+
+/// Failure of the sparse direct solve.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum LinSolveError {
+    /// Symbolic analysis failed.
+    #[error("symbolic factorisation failed: {0}")]
+    Symbolic(String),
+    /// Numeric factorisation failed (singular matrix).
+    #[error("numeric factorisation failed: {0}")]
+    Numeric(String),
+}
+
+/// CSC matrix with element-to-value maps.
+#[derive(Clone, Debug)]
+pub struct SparseSystem {
+    n: usize,
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    /// Values (CSC order).
+    pub values: Vec<f64>,
+    /// For each element, the value position of its `(a, b)` dof pair (`8a+b`, row
+    /// `a`, column `b`).
+    pub elem_pos: Vec<[usize; 64]>,
+    /// Value position of each diagonal entry.
+    pub diag_pos: Vec<usize>,
+    symbolic: Option<SymbolicLu<usize>>,
+}
+
+impl SparseSystem {
+    /// Pattern of `ndof` equations coupled by elements with 8 dofs each.
+    pub fn new(ndof: usize, elem_dofs: &[[usize; 8]]) -> Self {
+        let mut cols: Vec<Vec<usize>> = vec![Vec::new(); ndof];
+        for d in elem_dofs {
+            for &c in d {
+                for &r in d {
+                    cols[c].push(r);
+                }
+            }
+        }
+        for (c, col) in cols.iter_mut().enumerate() {
+            col.push(c);
+            col.sort_unstable();
+            col.dedup();
+        }
+        let mut col_ptr = Vec::with_capacity(ndof + 1);
+        let mut row_idx = Vec::new();
+        col_ptr.push(0);
+        for col in &cols {
+            row_idx.extend_from_slice(col);
+            col_ptr.push(row_idx.len());
+        }
+        let pos = |r: usize, c: usize| -> usize {
+            let s = &row_idx[col_ptr[c]..col_ptr[c + 1]];
+            col_ptr[c] + s.binary_search(&r).expect("entry in pattern")
+        };
+        let elem_pos = elem_dofs
+            .iter()
+            .map(|d| {
+                let mut p = [0usize; 64];
+                for a in 0..8 {
+                    for b in 0..8 {
+                        p[8 * a + b] = pos(d[a], d[b]);
+                    }
+                }
+                p
+            })
+            .collect();
+        let diag_pos = (0..ndof).map(|c| pos(c, c)).collect();
+        let nnz = row_idx.len();
+        Self {
+            n: ndof,
+            col_ptr,
+            row_idx,
+            values: vec![0.0; nnz],
+            elem_pos,
+            diag_pos,
+            symbolic: None,
+        }
+    }
+
+    /// Number of equations.
+    pub fn size(&self) -> usize {
+        self.n
+    }
+
+    /// Zero all values.
+    pub fn clear(&mut self) {
+        self.values.iter_mut().for_each(|v| *v = 0.0);
+    }
+
+    /// Entry `(r, c)` (zero if outside the pattern).
+    pub fn get(&self, r: usize, c: usize) -> f64 {
+        let s = &self.row_idx[self.col_ptr[c]..self.col_ptr[c + 1]];
+        match s.binary_search(&r) {
+            Ok(k) => self.values[self.col_ptr[c] + k],
+            Err(_) => 0.0,
+        }
+    }
+
+    /// `y = A x`.
+    pub fn mul(&self, x: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; self.n];
+        for (c, &xc) in x.iter().enumerate() {
+            for k in self.col_ptr[c]..self.col_ptr[c + 1] {
+                y[self.row_idx[k]] += self.values[k] * xc;
+            }
+        }
+        y
+    }
+
+    /// Solve `A x = b` in place (`b` is overwritten by `x`).
+    pub fn solve_in_place(&mut self, b: &mut [f64]) -> Result<(), LinSolveError> {
+        let sym = SymbolicSparseColMatRef::new_checked(
+            self.n,
+            self.n,
+            &self.col_ptr,
+            None,
+            &self.row_idx,
+        );
+        if self.symbolic.is_none() {
+            self.symbolic = Some(
+                SymbolicLu::try_new(sym).map_err(|e| LinSolveError::Symbolic(format!("{e:?}")))?,
+            );
+        }
+        let symbolic = self.symbolic.clone().expect("symbolic set above");
+        let mat = SparseColMatRef::new(sym, &self.values);
+        let lu = Lu::try_new_with_symbolic(symbolic, mat)
+            .map_err(|e| LinSolveError::Numeric(format!("{e:?}")))?;
+        lu.solve_in_place(ColMut::from_slice_mut(b));
+        if b.iter().any(|v| !v.is_finite()) {
+            return Err(LinSolveError::Numeric("non-finite solution".into()));
+        }
+        Ok(())
+    }
+}

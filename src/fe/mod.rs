@@ -1,0 +1,323 @@
+//! Finite-element solver for a periodic elastic layer pressed onto a rigid sinusoid.
+//!
+//! # Problem (plane strain, units of the wavelength λ)
+//! Half a wavelength of a layer, `X ∈ [0, ½]`, `Y ∈ [0, h]`, is bonded on `Y = h` to a
+//! rigid slab that moves down by `d`; `u_x = 0` on `X = 0` and `X = ½` (symmetry). The
+//! face `Y = 0` is pressed onto the rigid indenter `y_s(x) = −Δ(1 − cos 2πx)`
+//! (adhesionless, frictionless), whose peak touches the undeformed layer. The mean
+//! pressure is `p̄ = F/(λ/2)`, reported as `p̄/E*` with the plane-strain modulus
+//! `E* = E/(1 − ν²)`. The contact half-width `a` is the current `x` of the contact
+//! edge.
+//!
+//! # Method
+//! * [`mesh`]: structured Q1 mesh graded toward the contact face and the peak;
+//! * [`material`], [`element`]: compressible neo-Hookean, mean-dilatation Q1/P0 energy
+//!   (locking-free for `κ/G` from 10 to 10⁴);
+//! * [`contact`]: exact contact by nonlinear elimination on the analytic surface in the
+//!   current configuration, active-set updates, contact-edge location;
+//! * [`model`]: boundary conditions and assembly of the reduced residual/tangent;
+//! * [`solver`]: Newton with line search, adaptive displacement-controlled stepping
+//!   with step cutting; [`linsys`]: sparse LU through faer;
+//! * [`convergence`]: interpolation of curves at fixed `a/λ` and the mesh-convergence
+//!   (Richardson) table.
+//!
+//! The solver does no I/O.
+
+pub mod contact;
+pub mod convergence;
+pub mod element;
+pub mod error;
+pub mod linsys;
+pub mod material;
+pub mod mesh;
+pub mod model;
+pub mod solver;
+
+pub use contact::{EdgeRule, Interface};
+pub use convergence::{mesh_convergence, p_at, ConvergenceRow, ConvergenceTable};
+pub use error::{CurveFailure, SolveError};
+pub use material::estar_over_g;
+pub use mesh::Grading;
+
+use serde::{Deserialize, Serialize};
+
+/// Kinematic model.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Kinematics {
+    /// Finite deformation, compressible neo-Hookean, contact in the current
+    /// configuration.
+    #[default]
+    Finite,
+    /// Small strain, linear elastic with the same `G`, `ν`; gap at the reference `X`
+    /// (`u_y(X) ≥ y_s(X)`).
+    Linear,
+}
+
+/// Mesh resolution. Each named level doubles the element counts of the previous one.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum MeshLevel {
+    /// 24 × 12 elements.
+    Coarse,
+    /// 48 × 24 elements.
+    #[default]
+    Default,
+    /// 96 × 48 elements.
+    Fine,
+    /// Explicit counts along the contact face (`nx`) and the thickness (`ny`).
+    Elements {
+        /// Elements along `X ∈ [0, ½]`.
+        nx: usize,
+        /// Elements across the thickness.
+        ny: usize,
+    },
+}
+
+impl MeshLevel {
+    /// Element counts `(nx, ny)`.
+    pub fn counts(self) -> (usize, usize) {
+        match self {
+            MeshLevel::Coarse => (24, 12),
+            MeshLevel::Default => (48, 24),
+            MeshLevel::Fine => (96, 48),
+            MeshLevel::Elements { nx, ny } => (nx, ny),
+        }
+    }
+}
+
+/// Physical problem.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LayerProblem {
+    /// Indenter aspect ratio `Δ/λ` (> 0).
+    pub aspect_ratio: f64,
+    /// Layer thickness `h/λ` (> 0).
+    pub thickness_over_lambda: f64,
+    /// Bulk-to-shear modulus ratio `κ/G` (> 0).
+    pub kappa_over_g: f64,
+    /// Kinematics.
+    pub kinematics: Kinematics,
+    /// Interface law.
+    pub interface: Interface,
+}
+
+impl Default for LayerProblem {
+    fn default() -> Self {
+        Self {
+            aspect_ratio: 0.1,
+            thickness_over_lambda: 1.0,
+            kappa_over_g: 1000.0,
+            kinematics: Kinematics::Finite,
+            interface: Interface::Frictionless,
+        }
+    }
+}
+
+/// Numerical options.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SolveOptions {
+    /// Stop once the contact half-width reaches this `a/λ` (in `(0, ½)`).
+    pub until_a_over_lambda: f64,
+    /// Mesh resolution.
+    pub mesh: MeshLevel,
+    /// Mesh grading.
+    pub grading: Grading,
+    /// Contact-edge location rule.
+    pub edge_rule: EdgeRule,
+    /// Target advance of `a/λ` per load step.
+    pub da_target: f64,
+    /// First slab-displacement increment in units of the amplitude `Δ`.
+    pub first_step_over_amplitude: f64,
+    /// Largest growth factor of the displacement increment between steps.
+    pub max_step_growth: f64,
+    /// Steps needing more Newton iterations than this do not grow the increment.
+    pub target_newton_iterations: usize,
+    /// Maximum consecutive halvings of a failing step.
+    pub max_step_cuts: usize,
+    /// Maximum number of load steps.
+    pub max_steps: usize,
+    /// Maximum Newton iterations per active-set pass.
+    pub max_newton_iterations: usize,
+    /// Maximum line-search halvings.
+    pub max_line_search: usize,
+    /// Maximum active-set updates per load step.
+    pub max_active_set_updates: usize,
+    /// Relative residual tolerance (w.r.t. the largest nodal force).
+    pub residual_rtol: f64,
+    /// Absolute residual tolerance (units `G λ`).
+    pub residual_atol: f64,
+    /// Release threshold: `λ < −multiplier_rtol · max|λ|`.
+    pub multiplier_rtol: f64,
+    /// Activation threshold: penetration deeper than this times `Δ`.
+    pub gap_tolerance_over_amplitude: f64,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        Self {
+            until_a_over_lambda: 0.45,
+            mesh: MeshLevel::Default,
+            grading: Grading::default(),
+            edge_rule: EdgeRule::default(),
+            da_target: 0.01,
+            first_step_over_amplitude: 0.005,
+            max_step_growth: 3.0,
+            target_newton_iterations: 8,
+            max_step_cuts: 12,
+            max_steps: 2000,
+            max_newton_iterations: 30,
+            max_line_search: 40,
+            max_active_set_updates: 40,
+            residual_rtol: 1e-10,
+            residual_atol: 1e-14,
+            multiplier_rtol: 1e-9,
+            gap_tolerance_over_amplitude: 1e-10,
+        }
+    }
+}
+
+/// One converged point of the load curve.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CurvePoint {
+    /// Contact half-width `a/λ` (current configuration).
+    pub a_over_lambda: f64,
+    /// Mean pressure from the contact forces: `Σ_i λ_i / (λ/2) / E*`.
+    pub p_over_estar: f64,
+    /// Mean pressure from the slab reaction: `−Σ_top ∂Π/∂y / (λ/2) / E*`.
+    pub p_over_estar_reaction: f64,
+    /// Slab displacement `d/λ`.
+    pub slab_displacement_over_lambda: f64,
+    /// Newton iterations spent on this step (all active-set passes).
+    pub newton_iterations: usize,
+    /// Contact-face nodes in contact.
+    pub active_nodes: usize,
+}
+
+/// Deformed mesh of the last converged state.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DeformedState {
+    /// Current node positions (units of λ).
+    pub nodes: Vec<[f64; 2]>,
+    /// Quads (node ids, counter-clockwise).
+    pub quads: Vec<[usize; 4]>,
+    /// Contact-face node ids in order of increasing reference `X`.
+    pub bottom: Vec<usize>,
+    /// Normal contact pressure `p/E*` per contact-face node: the contact force
+    /// magnitude `λ √(1 + y_s'²)` over the node's tributary length on the deformed
+    /// face (0 on free nodes).
+    pub contact_pressure_over_estar: Vec<f64>,
+}
+
+/// A computed load curve.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Curve {
+    /// Converged points, in loading order.
+    pub points: Vec<CurvePoint>,
+    /// Last converged state.
+    pub final_state: DeformedState,
+}
+
+impl Curve {
+    /// `p̄/E*` interpolated at `a/λ` (see [`p_at`]).
+    pub fn p_at(&self, a_over_lambda: f64) -> Option<f64> {
+        p_at(&self.points, a_over_lambda)
+    }
+}
+
+fn check_range(
+    field: &'static str,
+    value: f64,
+    ok: bool,
+    allowed: &'static str,
+) -> Result<(), SolveError> {
+    if ok && value.is_finite() {
+        Ok(())
+    } else {
+        Err(SolveError::InvalidInput {
+            field,
+            value,
+            allowed,
+        })
+    }
+}
+
+/// Validate the inputs.
+pub fn validate(problem: &LayerProblem, opts: &SolveOptions) -> Result<(), SolveError> {
+    check_range(
+        "aspect_ratio",
+        problem.aspect_ratio,
+        problem.aspect_ratio > 0.0,
+        "> 0",
+    )?;
+    check_range(
+        "thickness_over_lambda",
+        problem.thickness_over_lambda,
+        problem.thickness_over_lambda > 0.0,
+        "> 0",
+    )?;
+    check_range(
+        "kappa_over_g",
+        problem.kappa_over_g,
+        problem.kappa_over_g > 0.0,
+        "> 0",
+    )?;
+    check_range(
+        "until_a_over_lambda",
+        opts.until_a_over_lambda,
+        opts.until_a_over_lambda > 0.0 && opts.until_a_over_lambda < 0.5,
+        "(0, 0.5)",
+    )?;
+    check_range("da_target", opts.da_target, opts.da_target > 0.0, "> 0")?;
+    let (nx, ny) = opts.mesh.counts();
+    check_range("mesh.nx", nx as f64, nx >= 2, ">= 2")?;
+    check_range("mesh.ny", ny as f64, ny >= 1, ">= 1")?;
+    check_range(
+        "grading.peak_ratio",
+        opts.grading.peak_ratio,
+        opts.grading.peak_ratio >= 1.0,
+        ">= 1",
+    )?;
+    check_range(
+        "grading.first_layer_over_dx",
+        opts.grading.first_layer_over_dx,
+        opts.grading.first_layer_over_dx > 0.0,
+        "> 0",
+    )?;
+    Ok(())
+}
+
+/// Build the discrete model for a problem (exposed for tests and diagnostics).
+pub fn build_model(problem: &LayerProblem, opts: &SolveOptions) -> model::Model {
+    let (nx, ny) = opts.mesh.counts();
+    let mesh = mesh::Mesh::graded(nx, ny, problem.thickness_over_lambda, opts.grading);
+    let mat = material::NeoHooke {
+        g: 1.0,
+        kappa: problem.kappa_over_g,
+    };
+    model::Model::new(
+        mesh,
+        mat,
+        problem.kinematics,
+        contact::Indenter {
+            amplitude: problem.aspect_ratio,
+        },
+    )
+}
+
+/// Trace the load curve `p̄/E*(a/λ)` from first contact to `opts.until_a_over_lambda`.
+///
+/// `on_step` is called with every converged point. On failure the error comes with the
+/// points converged so far.
+pub fn solve_curve(
+    problem: &LayerProblem,
+    opts: &SolveOptions,
+    on_step: &mut dyn FnMut(&CurvePoint),
+) -> Result<Curve, Box<CurveFailure>> {
+    if let Err(error) = validate(problem, opts) {
+        return Err(Box::new(CurveFailure {
+            error,
+            points: Vec::new(),
+        }));
+    }
+    let mut model = build_model(problem, opts);
+    let estar = estar_over_g(problem.kappa_over_g);
+    solver::trace(&mut model, opts, estar, on_step)
+}

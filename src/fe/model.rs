@@ -1,0 +1,388 @@
+//! Discrete model: mesh, material, boundary conditions, contact elimination and
+//! assembly of the reduced residual and tangent.
+//!
+//! Unknowns are current node positions. Each node owns two equation slots; a slot is
+//! either free, with a coefficient vector `c = ∂(x, y)/∂q` mapping the slot's unknown
+//! `q` to the node's position, or constrained (identity row). The reduced residual and
+//! tangent are `r_s = c_sᵀ g_node` and `K_st = c_sᵀ H c_t` (+ the contact curvature term
+//! `y_s'' ∂Π/∂y` on sliding nodes), where `g = ∂Π/∂x` and `H = ∂²Π/∂x²` are assembled
+//! from the elements.
+//!
+//! Boundary conditions (units of λ, `h` the thickness, `d` the slab displacement):
+//! * bonded face `Y = h`: `x = X`, `y = h − d` (moves with the rigid slab);
+//! * lateral faces `X = 0`, `X = ½`: `x = X` (symmetry), `y` free;
+//! * contact face `Y = 0`: free, or active (on the indenter, see [`super::contact`]).
+//!
+//! Loading is by the slab displacement `d` (displacement control). For monotonic,
+//! frictionless (path-independent) loading the equilibrium states are the same as under
+//! the corresponding force control, and displacement control avoids the limit-point
+//! and rigid-body issues of force control.
+
+use super::contact::Indenter;
+use super::element::{self, QuadRef};
+use super::linsys::SparseSystem;
+use super::material::NeoHooke;
+use super::mesh::Mesh;
+use super::Kinematics;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Role {
+    Interior,
+    Top,
+    Side,
+    Bottom,
+    BottomCorner,
+}
+
+/// Mutable solution state.
+#[derive(Clone, Debug)]
+pub struct State {
+    /// Current node positions.
+    pub x: Vec<[f64; 2]>,
+    /// Active flag per contact-face node (same order as `Mesh::bottom`).
+    pub active: Vec<bool>,
+    /// Slab displacement `d/λ` (positive pressing the layer onto the indenter).
+    pub d: f64,
+}
+
+/// Assembled energy and forces.
+#[derive(Clone, Debug)]
+pub struct Forces {
+    /// Total potential energy `Π` (units `G λ²` per unit depth).
+    pub energy: f64,
+    /// Full gradient `∂Π/∂x` (2 per node).
+    pub grad: Vec<f64>,
+    /// Reduced residual per slot (0 on constrained slots).
+    pub resid: Vec<f64>,
+}
+
+/// The discrete model.
+#[derive(Clone, Debug)]
+pub struct Model {
+    /// Mesh.
+    pub mesh: Mesh,
+    /// Material (`G = 1`).
+    pub mat: NeoHooke,
+    /// Kinematics.
+    pub kin: Kinematics,
+    /// Indenter.
+    pub indenter: Indenter,
+    refs: Vec<QuadRef>,
+    k_lin: Vec<[[f64; 8]; 8]>,
+    role: Vec<Role>,
+    /// Sparse tangent.
+    pub sys: SparseSystem,
+}
+
+type SlotMap = Vec<[Option<[f64; 2]>; 2]>;
+
+impl Model {
+    /// Build the model.
+    pub fn new(mesh: Mesh, mat: NeoHooke, kin: Kinematics, indenter: Indenter) -> Self {
+        let refs: Vec<QuadRef> = mesh
+            .quads
+            .iter()
+            .map(|q| {
+                QuadRef::new(&[
+                    mesh.nodes[q[0]],
+                    mesh.nodes[q[1]],
+                    mesh.nodes[q[2]],
+                    mesh.nodes[q[3]],
+                ])
+            })
+            .collect();
+        let k_lin = match kin {
+            Kinematics::Linear => mesh
+                .quads
+                .iter()
+                .zip(&refs)
+                .map(|(q, r)| {
+                    let xr = [
+                        mesh.nodes[q[0]],
+                        mesh.nodes[q[1]],
+                        mesh.nodes[q[2]],
+                        mesh.nodes[q[3]],
+                    ];
+                    element::tangent(r, &mat, &xr)
+                        .expect("reference element is valid")
+                        .hess
+                })
+                .collect(),
+            Kinematics::Finite => Vec::new(),
+        };
+        let mut role = vec![Role::Interior; mesh.nodes.len()];
+        for j in 0..=mesh.ny {
+            role[mesh.id(0, j)] = Role::Side;
+            role[mesh.id(mesh.nx, j)] = Role::Side;
+        }
+        for &b in &mesh.bottom {
+            role[b] = Role::Bottom;
+        }
+        role[mesh.id(0, 0)] = Role::BottomCorner;
+        role[mesh.id(mesh.nx, 0)] = Role::BottomCorner;
+        for &t in &mesh.top {
+            role[t] = Role::Top;
+        }
+        let elem_dofs: Vec<[usize; 8]> = mesh
+            .quads
+            .iter()
+            .map(|q| {
+                let mut d = [0; 8];
+                for a in 0..4 {
+                    d[2 * a] = 2 * q[a];
+                    d[2 * a + 1] = 2 * q[a] + 1;
+                }
+                d
+            })
+            .collect();
+        let sys = SparseSystem::new(2 * mesh.nodes.len(), &elem_dofs);
+        Self {
+            mesh,
+            mat,
+            kin,
+            indenter,
+            refs,
+            k_lin,
+            role,
+            sys,
+        }
+    }
+
+    /// Undeformed state with only the peak node in contact.
+    pub fn initial_state(&self) -> State {
+        let mut active = vec![false; self.mesh.bottom.len()];
+        active[0] = true;
+        State {
+            x: self.mesh.nodes.clone(),
+            active,
+            d: 0.0,
+        }
+    }
+
+    fn bottom_slot(&self) -> Vec<Option<usize>> {
+        let mut b = vec![None; self.mesh.nodes.len()];
+        for (k, &n) in self.mesh.bottom.iter().enumerate() {
+            b[n] = Some(k);
+        }
+        b
+    }
+
+    fn slot_map(&self, st: &State) -> SlotMap {
+        let bidx = self.bottom_slot();
+        (0..self.mesh.nodes.len())
+            .map(|n| match self.role[n] {
+                Role::Interior => [Some([1.0, 0.0]), Some([0.0, 1.0])],
+                Role::Top => [None, None],
+                Role::Side => [None, Some([0.0, 1.0])],
+                Role::BottomCorner => {
+                    if st.active[bidx[n].expect("bottom node")] {
+                        [None, None]
+                    } else {
+                        [None, Some([0.0, 1.0])]
+                    }
+                }
+                Role::Bottom => {
+                    if st.active[bidx[n].expect("bottom node")] {
+                        let s = match self.kin {
+                            Kinematics::Finite => self.indenter.slope(st.x[n][0]),
+                            Kinematics::Linear => 0.0,
+                        };
+                        [Some([1.0, s]), None]
+                    } else {
+                        [Some([1.0, 0.0]), Some([0.0, 1.0])]
+                    }
+                }
+            })
+            .collect()
+    }
+
+    /// Enforce the prescribed and contact constraints on `st` (top at `h − d`, lateral
+    /// `x = X`, active nodes on the indenter).
+    pub fn enforce_constraints(&self, st: &mut State) {
+        let h = self.mesh.thickness;
+        for (n, r) in self.role.iter().enumerate() {
+            let xr = self.mesh.nodes[n];
+            match r {
+                Role::Top => st.x[n] = [xr[0], h - st.d],
+                Role::Side | Role::BottomCorner => st.x[n][0] = xr[0],
+                _ => {}
+            }
+        }
+        for (k, &n) in self.mesh.bottom.iter().enumerate() {
+            if st.active[k] {
+                st.x[n][1] = self.surface_y(st, n);
+            }
+        }
+    }
+
+    fn surface_y(&self, st: &State, n: usize) -> f64 {
+        match self.kin {
+            Kinematics::Finite => self.indenter.y(st.x[n][0]),
+            Kinematics::Linear => self.indenter.y(self.mesh.nodes[n][0]),
+        }
+    }
+
+    /// Gap of each contact-face node (`y − y_s(x)`, at the reference `X` for linear
+    /// kinematics).
+    pub fn gaps(&self, st: &State) -> Vec<f64> {
+        self.mesh
+            .bottom
+            .iter()
+            .map(|&n| st.x[n][1] - self.surface_y(st, n))
+            .collect()
+    }
+
+    fn elem_x(&self, st: &State, e: usize) -> [[f64; 2]; 4] {
+        let q = self.mesh.quads[e];
+        [st.x[q[0]], st.x[q[1]], st.x[q[2]], st.x[q[3]]]
+    }
+
+    fn linear_elem(&self, st: &State, e: usize) -> (f64, [f64; 8]) {
+        let q = self.mesh.quads[e];
+        let mut u = [0.0; 8];
+        for a in 0..4 {
+            for i in 0..2 {
+                u[2 * a + i] = st.x[q[a]][i] - self.mesh.nodes[q[a]][i];
+            }
+        }
+        let k = &self.k_lin[e];
+        let mut g = [0.0; 8];
+        let mut en = 0.0;
+        for a in 0..8 {
+            g[a] = (0..8).map(|b| k[a][b] * u[b]).sum();
+            en += 0.5 * u[a] * g[a];
+        }
+        (en, g)
+    }
+
+    /// Total energy, `None` if any element is inverted.
+    pub fn energy(&self, st: &State) -> Option<f64> {
+        let mut e = 0.0;
+        for k in 0..self.mesh.quads.len() {
+            e += match self.kin {
+                Kinematics::Finite => {
+                    element::energy(&self.refs[k], &self.mat, &self.elem_x(st, k))?
+                }
+                Kinematics::Linear => self.linear_elem(st, k).0,
+            };
+        }
+        Some(e)
+    }
+
+    /// Assemble energy, gradient, reduced residual and (if `with_matrix`) the reduced
+    /// tangent into `self.sys`. `None` if any element is inverted.
+    pub fn assemble(&mut self, st: &State, with_matrix: bool) -> Option<Forces> {
+        let nn = self.mesh.nodes.len();
+        let map = self.slot_map(st);
+        let mut grad = vec![0.0; 2 * nn];
+        let mut energy = 0.0;
+        if with_matrix {
+            self.sys.clear();
+        }
+        for e in 0..self.mesh.quads.len() {
+            let q = self.mesh.quads[e];
+            let (en, g, hess) = match self.kin {
+                Kinematics::Finite => {
+                    let t = element::tangent(&self.refs[e], &self.mat, &self.elem_x(st, e))?;
+                    (t.energy, t.grad, t.hess)
+                }
+                Kinematics::Linear => {
+                    let (en, g) = self.linear_elem(st, e);
+                    (en, g, self.k_lin[e])
+                }
+            };
+            energy += en;
+            for a in 0..4 {
+                grad[2 * q[a]] += g[2 * a];
+                grad[2 * q[a] + 1] += g[2 * a + 1];
+            }
+            if with_matrix {
+                let pos = &self.sys.elem_pos[e];
+                for a in 0..4 {
+                    for s in 0..2 {
+                        let Some(ca) = map[q[a]][s] else { continue };
+                        // row vector caᵀ H[a, ·]
+                        let mut row = [0.0; 8];
+                        for (col, rv) in row.iter_mut().enumerate() {
+                            *rv = ca[0] * hess[2 * a][col] + ca[1] * hess[2 * a + 1][col];
+                        }
+                        for b in 0..4 {
+                            for t in 0..2 {
+                                let Some(cb) = map[q[b]][t] else { continue };
+                                let v = row[2 * b] * cb[0] + row[2 * b + 1] * cb[1];
+                                self.sys.values[pos[8 * (2 * a + s) + 2 * b + t]] += v;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let mut resid = vec![0.0; 2 * nn];
+        for n in 0..nn {
+            for s in 0..2 {
+                if let Some(c) = map[n][s] {
+                    resid[2 * n + s] = c[0] * grad[2 * n] + c[1] * grad[2 * n + 1];
+                }
+            }
+        }
+        if with_matrix {
+            for n in 0..nn {
+                for s in 0..2 {
+                    if map[n][s].is_none() {
+                        self.sys.values[self.sys.diag_pos[2 * n + s]] = 1.0;
+                    }
+                }
+            }
+            if self.kin == Kinematics::Finite {
+                for (k, &n) in self.mesh.bottom.iter().enumerate() {
+                    if st.active[k] && map[n][0].is_some() {
+                        self.sys.values[self.sys.diag_pos[2 * n]] +=
+                            grad[2 * n + 1] * self.indenter.curvature(st.x[n][0]);
+                    }
+                }
+            }
+        }
+        Some(Forces {
+            energy,
+            grad,
+            resid,
+        })
+    }
+
+    /// Apply the Newton update `α δ` (slot-wise) to `base`. Sliding nodes move in `x`
+    /// and are put back on the indenter exactly (`y = y_s(x)`).
+    pub fn updated(&self, base: &State, dq: &[f64], alpha: f64) -> State {
+        let mut st = base.clone();
+        let map = self.slot_map(base);
+        for n in 0..self.mesh.nodes.len() {
+            for s in 0..2 {
+                if map[n][s].is_some() {
+                    st.x[n][s] += alpha * dq[2 * n + s];
+                }
+            }
+        }
+        self.enforce_constraints(&mut st);
+        st
+    }
+
+    /// Multipliers `λ_i = ∂Π/∂y_i` of the contact-face nodes (0 on free nodes).
+    pub fn multipliers(&self, st: &State, grad: &[f64]) -> Vec<f64> {
+        self.mesh
+            .bottom
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| if st.active[k] { grad[2 * n + 1] } else { 0.0 })
+            .collect()
+    }
+
+    /// Vertical force transmitted by the slab, `−Σ_top ∂Π/∂y` (per unit depth, units
+    /// `G λ`).
+    pub fn slab_reaction(&self, grad: &[f64]) -> f64 {
+        -self.mesh.top.iter().map(|&n| grad[2 * n + 1]).sum::<f64>()
+    }
+
+    /// Number of nodes.
+    pub fn num_nodes(&self) -> usize {
+        self.mesh.nodes.len()
+    }
+}

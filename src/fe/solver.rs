@@ -1,0 +1,354 @@
+//! Newton's method with line search, the contact active-set loop and adaptive load
+//! stepping with step cutting.
+//!
+//! * Newton: consistent tangent of the reduced problem, sparse LU (symbolic
+//!   factorisation reused), backtracking line search on the energy `Π` (Armijo,
+//!   `c = 10⁻⁴`); if the Newton direction is not a descent direction the residual norm
+//!   is used instead. Inverted trial configurations (`J ≤ 0`) have `Π = +∞` and are
+//!   backtracked. Convergence: `‖r‖∞ ≤ rtol · max|∂Π/∂x| + atol`.
+//! * Active set: after each converged Newton solve, release nodes with `λ < 0`,
+//!   activate penetrating nodes, repeat (see [`super::contact`]).
+//! * Load stepping in the slab displacement `d`: the increment is adapted so that the
+//!   contact half-width advances by about `da_target` per step; a failed step
+//!   (Newton divergence, inversion, active-set cycling) is retried from the last
+//!   converged state with half the increment, up to `max_step_cuts` times in a row.
+//!   The predictor extrapolates the last converged increment.
+
+use super::contact::locate_edge;
+use super::error::{CurveFailure, SolveError};
+use super::model::{Model, State};
+use super::{Curve, CurvePoint, DeformedState, Kinematics, SolveOptions};
+
+/// Why one attempt at a load step failed.
+#[derive(Debug, Clone)]
+pub(crate) enum StepFail {
+    Diverged {
+        iteration: usize,
+        residual: f64,
+        reason: String,
+    },
+    Inverted {
+        iteration: usize,
+        residual: f64,
+    },
+    Cycling {
+        iterations: usize,
+    },
+    Linear {
+        iteration: usize,
+        message: String,
+    },
+}
+
+impl StepFail {
+    fn into_error(self, step: usize, d: f64) -> SolveError {
+        match self {
+            StepFail::Diverged {
+                iteration,
+                residual,
+                reason,
+            } => SolveError::NewtonDiverged {
+                step,
+                iteration,
+                residual,
+                slab_displacement_over_lambda: d,
+                reason,
+            },
+            StepFail::Inverted {
+                iteration,
+                residual,
+            } => SolveError::Inverted {
+                step,
+                iteration,
+                residual,
+            },
+            StepFail::Cycling { iterations } => SolveError::ActiveSetCycling { step, iterations },
+            StepFail::Linear { iteration, message } => SolveError::LinearSolve {
+                step,
+                iteration,
+                message,
+            },
+        }
+    }
+}
+
+fn inf_norm(v: &[f64]) -> f64 {
+    v.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
+}
+
+/// Newton iterations at a fixed active set. Returns the number of iterations.
+pub(crate) fn newton(
+    model: &mut Model,
+    st: &mut State,
+    opts: &SolveOptions,
+) -> Result<usize, StepFail> {
+    let mut last_res = f64::NAN;
+    for it in 0..=opts.max_newton_iterations {
+        let Some(f) = model.assemble(st, true) else {
+            return Err(StepFail::Inverted {
+                iteration: it,
+                residual: last_res,
+            });
+        };
+        let res = inf_norm(&f.resid);
+        let scale = inf_norm(&f.grad);
+        last_res = res;
+        if res <= opts.residual_rtol * scale + opts.residual_atol {
+            return Ok(it);
+        }
+        if it == opts.max_newton_iterations || !res.is_finite() {
+            break;
+        }
+        let mut dq: Vec<f64> = f.resid.iter().map(|r| -r).collect();
+        if let Err(e) = model.sys.solve_in_place(&mut dq) {
+            return Err(StepFail::Linear {
+                iteration: it,
+                message: e.to_string(),
+            });
+        }
+        if model.kin == Kinematics::Linear {
+            // quadratic energy: the Newton step is exact
+            *st = model.updated(st, &dq, 1.0);
+            continue;
+        }
+        let slope: f64 = f.resid.iter().zip(&dq).map(|(r, d)| r * d).sum();
+        let e0 = f.energy;
+        let mut alpha = 1.0;
+        let mut accepted = None;
+        for _ in 0..opts.max_line_search {
+            let trial = model.updated(st, &dq, alpha);
+            if slope < 0.0 {
+                if let Some(e) = model.energy(&trial) {
+                    if e <= e0 + 1e-4 * alpha * slope + 1e-13 * e0.abs() {
+                        accepted = Some(trial);
+                        break;
+                    }
+                }
+            } else if let Some(ft) = model.assemble(&trial, false) {
+                if inf_norm(&ft.resid) < (1.0 - 1e-4 * alpha) * res {
+                    accepted = Some(trial);
+                    break;
+                }
+            }
+            alpha *= 0.5;
+        }
+        match accepted {
+            Some(t) => *st = t,
+            None => {
+                return Err(StepFail::Diverged {
+                    iteration: it,
+                    residual: res,
+                    reason: "line search found no acceptable step".into(),
+                })
+            }
+        }
+    }
+    Err(StepFail::Diverged {
+        iteration: opts.max_newton_iterations,
+        residual: last_res,
+        reason: "maximum Newton iterations reached".into(),
+    })
+}
+
+/// Converge one load step: Newton + active-set updates. Returns total Newton
+/// iterations.
+pub(crate) fn equilibrate(
+    model: &mut Model,
+    st: &mut State,
+    opts: &SolveOptions,
+) -> Result<usize, StepFail> {
+    let mut total = 0;
+    for _ in 0..opts.max_active_set_updates {
+        total += newton(model, st, opts)?;
+        let f = model.assemble(st, false).ok_or(StepFail::Inverted {
+            iteration: total,
+            residual: f64::NAN,
+        })?;
+        let lam = model.multipliers(st, &f.grad);
+        let gaps = model.gaps(st);
+        let lam_scale = lam.iter().fold(0.0_f64, |m, l| m.max(l.abs())).max(1e-300);
+        let gap_tol = opts.gap_tolerance_over_amplitude * model.indenter.amplitude;
+        let mut changed = false;
+        for k in 0..st.active.len() {
+            if st.active[k] {
+                if lam[k] < -opts.multiplier_rtol * lam_scale {
+                    st.active[k] = false;
+                    changed = true;
+                }
+            } else if gaps[k] < -gap_tol {
+                st.active[k] = true;
+                changed = true;
+            }
+        }
+        if !changed {
+            return Ok(total);
+        }
+        model.enforce_constraints(st);
+    }
+    Err(StepFail::Cycling {
+        iterations: opts.max_active_set_updates,
+    })
+}
+
+/// Measured quantities of a converged state.
+pub(crate) fn measure(
+    model: &mut Model,
+    st: &State,
+    opts: &SolveOptions,
+    estar: f64,
+) -> (CurvePoint, Vec<f64>) {
+    let f = model
+        .assemble(st, false)
+        .expect("converged state is not inverted");
+    let lam = model.multipliers(st, &f.grad);
+    let gaps = model.gaps(st);
+    let half = 0.5;
+    let p_tr = lam.iter().sum::<f64>() / half / estar;
+    let p_re = model.slab_reaction(&f.grad) / half / estar;
+    let xs: Vec<f64> = model.mesh.bottom.iter().map(|&n| st.x[n][0]).collect();
+    let a = locate_edge(&xs, &st.active, &gaps, &lam, opts.edge_rule);
+    (
+        CurvePoint {
+            a_over_lambda: a,
+            p_over_estar: p_tr,
+            p_over_estar_reaction: p_re,
+            slab_displacement_over_lambda: st.d,
+            newton_iterations: 0,
+            active_nodes: st.active.iter().filter(|&&b| b).count(),
+        },
+        lam,
+    )
+}
+
+fn deformed_state(model: &Model, st: &State, lam: &[f64], estar: f64) -> DeformedState {
+    let b = &model.mesh.bottom;
+    let n = b.len();
+    let pos = |k: usize| st.x[b[k]];
+    let seg = |k: usize| {
+        let (p, q) = (pos(k), pos(k + 1));
+        ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)).sqrt()
+    };
+    let pressure = (0..n)
+        .map(|k| {
+            let trib =
+                0.5 * (if k > 0 { seg(k - 1) } else { 0.0 } + if k + 1 < n { seg(k) } else { 0.0 });
+            let s = match model.kin {
+                Kinematics::Finite => model.indenter.slope(pos(k)[0]),
+                Kinematics::Linear => 0.0,
+            };
+            lam[k] * (1.0 + s * s).sqrt() / trib / estar
+        })
+        .collect();
+    DeformedState {
+        nodes: st.x.clone(),
+        quads: model.mesh.quads.clone(),
+        bottom: b.clone(),
+        contact_pressure_over_estar: pressure,
+    }
+}
+
+fn predictor(model: &Model, cur: &State, prev: Option<&State>, dd: f64) -> Option<State> {
+    let h = model.mesh.thickness;
+    let mut tries: Vec<State> = Vec::new();
+    if let Some(p) = prev {
+        let ddp = cur.d - p.d;
+        if ddp > 0.0 {
+            let s = dd / ddp;
+            let mut st = cur.clone();
+            for (xn, (xc, xp)) in st.x.iter_mut().zip(cur.x.iter().zip(&p.x)) {
+                xn[0] = xc[0] + s * (xc[0] - xp[0]);
+                xn[1] = xc[1] + s * (xc[1] - xp[1]);
+            }
+            st.d = cur.d + dd;
+            tries.push(st);
+        }
+    }
+    let mut st = cur.clone();
+    for (xn, xr) in st.x.iter_mut().zip(&model.mesh.nodes) {
+        xn[1] -= dd * xr[1] / h;
+    }
+    st.d = cur.d + dd;
+    tries.push(st);
+    for mut t in tries {
+        model.enforce_constraints(&mut t);
+        if model.energy(&t).is_some() {
+            return Some(t);
+        }
+    }
+    None
+}
+
+/// Trace the load curve up to `opts.until_a_over_lambda`.
+pub(crate) fn trace(
+    model: &mut Model,
+    opts: &SolveOptions,
+    estar: f64,
+    on_step: &mut dyn FnMut(&CurvePoint),
+) -> Result<Curve, Box<CurveFailure>> {
+    let amp = model.indenter.amplitude;
+    let mut cur = model.initial_state();
+    let mut prev: Option<State> = None;
+    let mut dd = opts.first_step_over_amplitude * amp;
+    let mut a_cur = 0.0;
+    let mut points: Vec<CurvePoint> = Vec::new();
+    let mut cuts = 0;
+    let mut step = 1;
+    let mut last_lam = vec![0.0; model.mesh.bottom.len()];
+    while a_cur < opts.until_a_over_lambda {
+        if step > opts.max_steps {
+            return Err(Box::new(CurveFailure {
+                error: SolveError::TooManySteps {
+                    steps: opts.max_steps,
+                    a_over_lambda: a_cur,
+                },
+                points,
+            }));
+        }
+        let attempt = match predictor(model, &cur, prev.as_ref(), dd) {
+            Some(mut st) => equilibrate(model, &mut st, opts).map(|it| (st, it)),
+            None => Err(StepFail::Inverted {
+                iteration: 0,
+                residual: f64::NAN,
+            }),
+        };
+        match attempt {
+            Ok((st, iters)) => {
+                let (mut pt, lam) = measure(model, &st, opts, estar);
+                pt.newton_iterations = iters;
+                let da = pt.a_over_lambda - a_cur;
+                let mut factor = if da > 1e-12 {
+                    opts.da_target / da
+                } else {
+                    opts.max_step_growth
+                };
+                factor = factor.clamp(0.5, opts.max_step_growth);
+                if iters > opts.target_newton_iterations {
+                    factor = factor.min(0.7);
+                }
+                a_cur = pt.a_over_lambda;
+                on_step(&pt);
+                points.push(pt);
+                last_lam = lam;
+                prev = Some(std::mem::replace(&mut cur, st));
+                dd *= factor;
+                cuts = 0;
+                step += 1;
+            }
+            Err(fail) => {
+                cuts += 1;
+                if cuts > opts.max_step_cuts {
+                    return Err(Box::new(CurveFailure {
+                        error: fail.into_error(step, cur.d + dd),
+                        points,
+                    }));
+                }
+                dd *= 0.5;
+            }
+        }
+    }
+    let final_state = deformed_state(model, &cur, &last_lam, estar);
+    Ok(Curve {
+        points,
+        final_state,
+    })
+}
