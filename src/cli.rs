@@ -185,3 +185,125 @@ pub fn format_check_report(r: &CheckReport, worst: usize) -> String {
     }
     s
 }
+
+/// Mesh resolution on the command line: a named level or a number of elements along the face.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MeshArg(pub crate::fe::MeshLevel);
+
+impl std::str::FromStr for MeshArg {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        use crate::fe::MeshLevel;
+        match s {
+            "coarse" => Ok(MeshArg(MeshLevel::Coarse)),
+            "default" => Ok(MeshArg(MeshLevel::Default)),
+            "fine" => Ok(MeshArg(MeshLevel::Fine)),
+            n => match n.parse::<usize>() {
+                Ok(nx) if (4..=2048).contains(&nx) => Ok(MeshArg(MeshLevel::Elements { nx, ny: (nx / 2).max(2) })),
+                _ => Err(format!(
+                    "--mesh = {s} is out of range; allowed: coarse, default, fine, or N elements along the face (4 to 2048; N/2 across the thickness)"
+                )),
+            },
+        }
+    }
+}
+
+/// Kinematics on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum KinematicsArg {
+    Finite,
+    Linear,
+}
+
+/// Arguments of `wavy solve`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct SolveArgs {
+    /// Aspect ratio Δ/λ (> 0).
+    #[arg(long, allow_negative_numbers = true)]
+    pub ar: f64,
+    /// Interfacial shear strength τ_max in MPa (≥ 0; 0 = frictionless).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub tau_max_mpa: f64,
+    /// Plane-strain modulus E* in MPa (> 0): τ_max/E* is what the physics sees (R7 default 1).
+    #[arg(long, default_value_t = crate::defaults::fe_estar_mpa(), allow_negative_numbers = true)]
+    pub estar_mpa: f64,
+    /// Bulk over shear modulus κ/G (> 0; R7 default 1000).
+    #[arg(long, default_value_t = crate::defaults::kappa_over_g(), allow_negative_numbers = true)]
+    pub kappa_over_g: f64,
+    /// Layer thickness over wavelength h/λ (> 0; R7 default 1).
+    #[arg(long, default_value_t = crate::defaults::thickness_over_lambda(), allow_negative_numbers = true)]
+    pub thickness_over_lambda: f64,
+    #[arg(long, value_enum, default_value = "finite")]
+    pub kinematics: KinematicsArg,
+    /// coarse, default, fine, or N elements along the contact face.
+    #[arg(long, default_value = "default")]
+    pub mesh: MeshArg,
+    /// Load until the contact half-width a/λ reaches this value (in (0, 0.5)).
+    #[arg(long, default_value_t = 0.45, allow_negative_numbers = true)]
+    pub until_a_over_lambda: f64,
+}
+
+/// The solver's problem and options for `wavy solve`, or an [`InputError`] naming the flag.
+pub fn solve_setup(
+    args: &SolveArgs,
+) -> Result<(crate::fe::LayerProblem, crate::fe::SolveOptions), InputError> {
+    use crate::fe::{Interface, Kinematics, LayerProblem, SolveOptions};
+    let positive = |flag: &str, v: f64| {
+        if v.is_finite() && v > 0.0 {
+            Ok(())
+        } else {
+            Err(input_error(flag, v, "> 0"))
+        }
+    };
+    positive("--ar", args.ar)?;
+    positive("--estar-mpa", args.estar_mpa)?;
+    positive("--kappa-over-g", args.kappa_over_g)?;
+    positive("--thickness-over-lambda", args.thickness_over_lambda)?;
+    if !(args.tau_max_mpa.is_finite() && args.tau_max_mpa >= 0.0) {
+        return Err(input_error("--tau-max-mpa", args.tau_max_mpa, ">= 0"));
+    }
+    if args.tau_max_mpa > 0.0 {
+        return Err(input_error(
+            "--tau-max-mpa",
+            args.tau_max_mpa,
+            "0 (the solver is frictionless so far: Coulomb–Orowan friction is not implemented yet)",
+        ));
+    }
+    let x = args.until_a_over_lambda;
+    if !(x.is_finite() && x > 0.0 && x < 0.5) {
+        return Err(input_error("--until-a-over-lambda", x, "(0, 0.5)"));
+    }
+    let problem = LayerProblem {
+        aspect_ratio: args.ar,
+        thickness_over_lambda: args.thickness_over_lambda,
+        kappa_over_g: args.kappa_over_g,
+        kinematics: match args.kinematics {
+            KinematicsArg::Finite => Kinematics::Finite,
+            KinematicsArg::Linear => Kinematics::Linear,
+        },
+        interface: Interface::Frictionless,
+    };
+    let opts = SolveOptions {
+        until_a_over_lambda: x,
+        mesh: args.mesh.0,
+        ..SolveOptions::default()
+    };
+    Ok((problem, opts))
+}
+
+/// Header of `wavy solve`'s CSV.
+pub const SOLVE_HEADER: &str =
+    "a_over_lambda,p_over_estar,p_over_estar_reaction,slab_displacement_over_lambda,newton_iterations,active_nodes";
+
+/// One CSV row of `wavy solve` (numbers in shortest round-trip form).
+pub fn solve_row(p: &crate::fe::CurvePoint) -> String {
+    format!(
+        "{},{},{},{},{},{}",
+        p.a_over_lambda,
+        p.p_over_estar,
+        p.p_over_estar_reaction,
+        p.slab_displacement_over_lambda,
+        p.newton_iterations,
+        p.active_nodes
+    )
+}

@@ -42,6 +42,10 @@ enum Command {
         #[arg(long, default_value = "expected")]
         expected: PathBuf,
     },
+    /// Solve the finite-element contact problem: one CSV row per converged load step on stdout,
+    /// from first contact until a/λ reaches the target (non-zero exit, after the converged rows,
+    /// when the solver cannot go on).
+    Solve(cli::SolveArgs),
     /// Evaluate a model law, forward (a/λ → p̄/E*) or inverse (p̄/E* → a/λ); CSV on stdout,
     /// numbers in shortest round-trip form.
     Eval(cli::EvalArgs),
@@ -122,9 +126,56 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 ExitCode::from(1)
             })
         }
+        Command::Solve(args) => solve(&args),
         Command::Eval(args) => {
             print!("{}", cli::eval(&args)?);
             Ok(ExitCode::SUCCESS)
+        }
+    }
+}
+
+fn solve(args: &cli::SolveArgs) -> Result<ExitCode> {
+    use std::io::{IsTerminal, Write};
+    let (problem, opts) = cli::solve_setup(args)?;
+    let bar = std::io::stderr().is_terminal().then(|| {
+        let b = indicatif::ProgressBar::new_spinner();
+        b.set_style(
+            indicatif::ProgressStyle::with_template("{spinner} [{elapsed_precise}] {msg}")
+                .expect("valid template"),
+        );
+        b
+    });
+    let mut out = std::io::stdout().lock();
+    writeln!(out, "{}", cli::SOLVE_HEADER)?;
+    let mut write_error = None;
+    let result = wavy::fe::solve_curve(&problem, &opts, &mut |p| {
+        if let Some(b) = &bar {
+            b.set_message(format!(
+                "a/λ = {:.4}, p̄/E* = {:.5}",
+                p.a_over_lambda, p.p_over_estar
+            ));
+            b.tick();
+        }
+        if write_error.is_none() {
+            if let Err(e) = writeln!(out, "{}", cli::solve_row(p)) {
+                write_error = Some(e);
+            }
+        }
+    });
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    if let Some(e) = write_error {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            return Ok(ExitCode::SUCCESS);
+        }
+        return Err(e.into());
+    }
+    match result {
+        Ok(_) => Ok(ExitCode::SUCCESS),
+        Err(failure) => {
+            eprintln!("error: the solver stopped: {}", failure.error);
+            Ok(ExitCode::from(1))
         }
     }
 }
