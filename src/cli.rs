@@ -94,7 +94,9 @@ pub fn eval(args: &EvalArgs) -> Result<String> {
         EvalModel::Westergaard => ("westergaard", "", ""),
         EvalModel::Wnl => ("wnl", args.reading.name(), args.coefficients.as_str()),
     };
-    let mut out = String::from("model,reading,coefficients,aspect_ratio,tau_max_mpa,a_over_lambda,p_over_estar,extrapolated\n");
+    let mut out = String::from(
+        "model,reading,coefficients,aspect_ratio,tau_max_mpa,a_over_lambda,p_over_estar,extrapolated\n",
+    );
     let mut row = |x: f64, p: f64| {
         let _ = writeln!(
             out,
@@ -306,4 +308,30 @@ pub fn solve_row(p: &crate::fe::CurvePoint) -> String {
         p.newton_iterations,
         p.active_nodes
     )
+}
+
+/// Sweep flags shared by `run`, `reproduce` and `check`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct SweepArgs {
+    /// Worker threads for finite-element cases (≥ 1; default: all cores).
+    #[arg(long)]
+    pub jobs: Option<usize>,
+    /// Folder of cached finite-element results (shared by the shards of a split sweep).
+    #[arg(long, default_value = ".wavy-cache")]
+    pub cache: PathBuf,
+}
+
+impl SweepArgs {
+    /// The run options these flags ask for.
+    pub fn run_options(&self) -> Result<crate::runner::RunOptions, InputError> {
+        let mut opts = crate::runner::RunOptions::default();
+        if let Some(j) = self.jobs {
+            if j == 0 {
+                return Err(input_error("--jobs", 0, ">= 1"));
+            }
+            opts.sweep.jobs = j;
+        }
+        opts.sweep.cache_dir = self.cache.clone();
+        Ok(opts)
+    }
 }

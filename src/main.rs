@@ -22,11 +22,17 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Run one experiment spec: write <out>/<stem>.svg and its CSV tables.
+    /// Run one experiment spec: write <out>/<stem>.svg and its CSV tables. With --shard i/n,
+    /// compute only this shard's finite-element cases into the cache and write no figure.
     Run {
         spec: PathBuf,
         #[arg(long, default_value = "figures")]
         out: PathBuf,
+        #[command(flatten)]
+        sweep: cli::SweepArgs,
+        /// Compute only the cases with index ≡ i (mod n) into the cache (0 <= i < n).
+        #[arg(long)]
+        shard: Option<wavy::runner::sweep::Shard>,
     },
     /// Run every experiments/*.toml (all specs are parsed before anything is written).
     Reproduce {
@@ -34,6 +40,8 @@ enum Command {
         experiments: PathBuf,
         #[arg(long, default_value = "figures")]
         out: PathBuf,
+        #[command(flatten)]
+        sweep: cli::SweepArgs,
     },
     /// Recompute every spec and compare its tables with expected/ within the spec's tolerances.
     Check {
@@ -41,6 +49,8 @@ enum Command {
         experiments: PathBuf,
         #[arg(long, default_value = "expected")]
         expected: PathBuf,
+        #[command(flatten)]
+        sweep: cli::SweepArgs,
     },
     /// Solve the finite-element contact problem: one CSV row per converged load step on stdout,
     /// from first contact until a/λ reaches the target (non-zero exit, after the converged rows,
@@ -83,19 +93,39 @@ fn is_input_error(e: &anyhow::Error) -> bool {
 
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
-        Command::Run { spec, out } => {
-            let output = wavy::runner::run_spec_file(&spec)?;
+        Command::Run {
+            spec,
+            out,
+            sweep,
+            shard,
+        } => {
+            let mut opts = sweep.run_options()?;
+            if let Some(shard) = shard {
+                opts.sweep.shard = Some(shard);
+                let (computed, cached) = wavy::runner::compute_share(&spec, &opts)?;
+                println!(
+                    "shard {}/{}: computed {computed} case(s); {cached} of the spec's cases are in the cache",
+                    shard.index, shard.count
+                );
+                return Ok(ExitCode::SUCCESS);
+            }
+            let output = wavy::runner::run_spec_file(&spec, &opts)?;
             report(&output, &wavy::runner::write_outputs(&output, &out)?);
             Ok(ExitCode::SUCCESS)
         }
-        Command::Reproduce { experiments, out } => {
+        Command::Reproduce {
+            experiments,
+            out,
+            sweep,
+        } => {
+            let opts = sweep.run_options()?;
             let specs = cli::spec_files(&experiments)?;
             for s in &specs {
                 wavy::runner::load_spec(s)?;
             }
             let outputs = specs
                 .iter()
-                .map(|s| wavy::runner::run_spec_file(s))
+                .map(|s| wavy::runner::run_spec_file(s, &opts))
                 .collect::<Result<Vec<_>>>()?;
             for o in &outputs {
                 report(o, &wavy::runner::write_outputs(o, &out)?);
@@ -105,10 +135,12 @@ fn run(cli: Cli) -> Result<ExitCode> {
         Command::Check {
             experiments,
             expected,
+            sweep,
         } => {
+            let opts = sweep.run_options()?;
             let mut all_passed = true;
             for s in cli::spec_files(&experiments)? {
-                let r = wavy::runner::check_spec_file(&s, &expected)?;
+                let r = wavy::runner::check_spec_file(&s, &expected, &opts)?;
                 print!("{}", cli::format_check_report(&r, 5));
                 all_passed &= r.passed();
             }

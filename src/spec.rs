@@ -10,6 +10,7 @@
 //!
 //! This module reads no file: [`Spec::parse`] takes the text and the name to quote in errors.
 
+use crate::defaults;
 use crate::models::Reading;
 use serde::de::{self, Deserializer};
 use serde::Deserialize;
@@ -28,9 +29,7 @@ pub enum SpecError {
         field: String,
         message: String,
     },
-    #[error(
-        "{origin}: field `{field}`{location}: value {value} is out of range; allowed: {allowed}"
-    )]
+    #[error("{origin}: field `{field}`{location}: value {value} is out of range; allowed: {allowed}")]
     Invalid {
         origin: String,
         field: String,
@@ -115,6 +114,74 @@ pub struct FeVsModelScene {
     /// Where the model lines are sampled, a/λ.
     pub a_over_lambda: Grid,
     pub models: ModelSelection,
+    /// Finite-element curves; absent: model lines only.
+    pub fe: Option<FeSection>,
+}
+
+/// The finite-element curves of a `[fe_vs_model]` scene (REPLICATION.md R6; defaults R7).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FeSection {
+    /// τ_max values (MPa) of the panels that get an FE curve; each must be one of the panels'.
+    pub tau_max_mpa: Vec<Bounded<NonNegative>>,
+    /// Plane-strain modulus of the FE model, MPa: the physics sees τ_max/E* (R7 default 1).
+    #[serde(default = "default_fe_estar_mpa")]
+    pub estar_mpa: Bounded<Positive>,
+    /// Layer thickness over wavelength h/λ (R7 default 1).
+    #[serde(default = "default_thickness_over_lambda")]
+    pub thickness_over_lambda: Bounded<Positive>,
+    /// Bulk over shear modulus κ/G (R7 default 1000).
+    #[serde(default = "default_kappa_over_g")]
+    pub kappa_over_g: Bounded<Positive>,
+    /// Friction coefficient μ of the Coulomb–Orowan law (R7 default 1).
+    #[serde(default = "default_friction_coefficient")]
+    pub friction_coefficient: Bounded<NonNegative>,
+    /// `finite` (the paper's physics) or `linear` (small strain).
+    #[serde(default)]
+    pub kinematics: KinematicsName,
+    /// `coarse`, `default`, `fine`, or the number of elements along the contact face.
+    #[serde(default = "default_mesh")]
+    pub mesh: MeshName,
+    /// Load until a/λ reaches this value, in (0, 0.5).
+    pub until_a_over_lambda: Bounded<OpenHalfWidth>,
+}
+
+/// Kinematics by name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum KinematicsName {
+    #[default]
+    Finite,
+    Linear,
+}
+
+/// A mesh resolution by name (`coarse`, `default`, `fine`) or element count along the face.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MeshName(pub crate::fe::MeshLevel);
+
+impl<'de> Deserialize<'de> for MeshName {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let s = String::deserialize(d)?;
+        s.parse::<crate::cli::MeshArg>()
+            .map(|m| MeshName(m.0))
+            .map_err(|e| de::Error::custom(e.replace("--mesh = ", "value ")))
+    }
+}
+
+fn default_fe_estar_mpa() -> Bounded<Positive> {
+    Bounded::trusted(defaults::fe_estar_mpa())
+}
+fn default_thickness_over_lambda() -> Bounded<Positive> {
+    Bounded::trusted(defaults::thickness_over_lambda())
+}
+fn default_kappa_over_g() -> Bounded<Positive> {
+    Bounded::trusted(defaults::kappa_over_g())
+}
+fn default_friction_coefficient() -> Bounded<NonNegative> {
+    Bounded::trusted(defaults::friction_coefficient())
+}
+fn default_mesh() -> MeshName {
+    MeshName(crate::fe::MeshLevel::Default)
 }
 
 /// Paper Fig. 5 (R8): fingerprint ridges as a sinusoid, total contact area against load.
@@ -175,11 +242,7 @@ pub struct Grid {
 impl Grid {
     /// The grid's values; `min + i·(max − min)/(count − 1)`, the last one exactly `max`.
     pub fn values(&self) -> Vec<f64> {
-        let (lo, hi, n) = (
-            *self.min.get_ref(),
-            *self.max.get_ref(),
-            *self.count.get_ref(),
-        );
+        let (lo, hi, n) = (*self.min.get_ref(), *self.max.get_ref(), *self.count.get_ref());
         (0..n)
             .map(|i| {
                 if i + 1 == n {
@@ -213,6 +276,15 @@ pub struct Bounded<R: Range> {
 impl<R: Range> Bounded<R> {
     pub fn get(self) -> f64 {
         self.value
+    }
+
+    /// A value known to be in range (a default from `defaults`); panics otherwise.
+    fn trusted(value: f64) -> Self {
+        assert!(R::contains(value), "default {value} outside {}", R::ALLOWED);
+        Self {
+            value,
+            _range: std::marker::PhantomData,
+        }
     }
 }
 
@@ -251,6 +323,8 @@ range!(/// x > 0.
     Positive, "> 0", |x| x > 0.0);
 range!(/// x ≥ 0.
     NonNegative, ">= 0", |x| x >= 0.0);
+range!(/// 0 < x < ½: a contact half-width short of full contact.
+    OpenHalfWidth, "(0, 0.5)", |x| x > 0.0 && x < 0.5);
 range!(/// A relative tolerance that 6-digit golden numbers can meet.
     CheckRelTol, "[1e-5, 1]", |x| (1e-5..=1.0).contains(&x));
 
@@ -288,11 +362,7 @@ impl Spec {
 
     /// The one scene of this spec.
     pub fn scene(&self) -> Scene<'_> {
-        match (
-            &self.correction_surfaces,
-            &self.fe_vs_model,
-            &self.fingertip_area,
-        ) {
+        match (&self.correction_surfaces, &self.fe_vs_model, &self.fingertip_area) {
             (Some(s), None, None) => Scene::CorrectionSurfaces(s),
             (None, Some(s), None) => Scene::FeVsModel(s),
             (None, None, Some(s)) => Scene::FingertipArea(s),
@@ -314,8 +384,7 @@ impl Spec {
                 field: "(scene table)".into(),
                 location: Location(None),
                 value: format!("{n} scene tables"),
-                allowed: "exactly one of [correction_surfaces], [fe_vs_model], [fingertip_area]"
-                    .into(),
+                allowed: "exactly one of [correction_surfaces], [fe_vs_model], [fingertip_area]".into(),
             });
         }
         if let Some(s) = &self.correction_surfaces {
@@ -336,10 +405,7 @@ impl Spec {
                 "correction_surfaces.line_aspect_ratios",
                 s.line_aspect_ratios.len(),
             )?;
-            v.non_empty(
-                "correction_surfaces.line_tau_max_mpa",
-                s.line_tau_max_mpa.len(),
-            )?;
+            v.non_empty("correction_surfaces.line_tau_max_mpa", s.line_tau_max_mpa.len())?;
         }
         if let Some(s) = &self.fe_vs_model {
             v.non_empty("fe_vs_model.aspect_ratios", s.aspect_ratios.len())?;
@@ -351,14 +417,31 @@ impl Spec {
                 true,
             )?;
             v.models("fe_vs_model.models", &s.models)?;
+            if let Some(fe) = &s.fe {
+                v.non_empty("fe_vs_model.fe.tau_max_mpa", fe.tau_max_mpa.len())?;
+                let panels: Vec<f64> = s.tau_max_mpa.iter().map(|t| t.get()).collect();
+                for (i, t) in fe.tau_max_mpa.iter().map(|t| t.get()).enumerate() {
+                    if !panels.contains(&t) {
+                        return Err(v.invalid(
+                            &format!("fe_vs_model.fe.tau_max_mpa[{i}]"),
+                            None,
+                            t.to_string(),
+                            format!("one of the panels' tau_max_mpa {panels:?}"),
+                        ));
+                    }
+                    if t > 0.0 {
+                        return Err(v.invalid(
+                            &format!("fe_vs_model.fe.tau_max_mpa[{i}]"),
+                            None,
+                            t.to_string(),
+                            "0 (the solver is frictionless so far: Coulomb–Orowan friction is not implemented yet)".into(),
+                        ));
+                    }
+                }
+            }
         }
         if let Some(s) = &self.fingertip_area {
-            v.grid(
-                "fingertip_area.load_n",
-                &s.load_n,
-                (0.0, f64::INFINITY),
-                true,
-            )?;
+            v.grid("fingertip_area.load_n", &s.load_n, (0.0, f64::INFINITY), true)?;
             v.models("fingertip_area.models", &s.models)?;
             let [lo, hi] = s.estar_band_mpa.map(Bounded::get);
             let e = s.estar_mpa.get();
@@ -408,13 +491,7 @@ impl Validator<'_> {
         }
     }
 
-    fn grid(
-        &self,
-        field: &str,
-        g: &Grid,
-        bounds: (f64, f64),
-        closed_low: bool,
-    ) -> Result<(), SpecError> {
+    fn grid(&self, field: &str, g: &Grid, bounds: (f64, f64), closed_low: bool) -> Result<(), SpecError> {
         let (lo, hi) = bounds;
         let low_text = if closed_low {
             format!("[{lo}")
@@ -422,8 +499,7 @@ impl Validator<'_> {
             format!("({lo}")
         };
         let allowed = format!("{low_text}, {hi}]");
-        let in_range =
-            |x: f64| x.is_finite() && (if closed_low { x >= lo } else { x > lo }) && x <= hi;
+        let in_range = |x: f64| x.is_finite() && (if closed_low { x >= lo } else { x > lo }) && x <= hi;
         for (name, s) in [("min", &g.min), ("max", &g.max)] {
             if !in_range(*s.get_ref()) {
                 return Err(self.invalid(

@@ -5,7 +5,7 @@
 #[test]
 fn experiment_outputs() {
     insta::glob!("../experiments", "*.toml", |path| {
-        let out = wavy::runner::run_spec_file(path)
+        let out = wavy::runner::run_spec_file(path, &Default::default())
             .unwrap_or_else(|e| panic!("{}: {e:#}", path.display()));
         for table in &out.tables {
             let name = if table.name.is_empty() {
@@ -21,10 +21,9 @@ fn experiment_outputs() {
 
 #[test]
 fn outputs_are_byte_identical_across_runs() {
-    let spec =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("experiments/fig5_warman_ennos.toml");
-    let a = wavy::runner::run_spec_file(&spec).unwrap();
-    let b = wavy::runner::run_spec_file(&spec).unwrap();
+    let spec = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("experiments/fig5_warman_ennos.toml");
+    let a = wavy::runner::run_spec_file(&spec, &Default::default()).unwrap();
+    let b = wavy::runner::run_spec_file(&spec, &Default::default()).unwrap();
     assert_eq!(a.svg, b.svg);
     assert_eq!(a.tables, b.tables);
 }

@@ -86,19 +86,14 @@ pub(super) fn run(
                         area_mm2,
                     } => {
                         pts.push((f, *area_mm2));
-                        (
-                            (*a_over_lambda).into(),
-                            (*area_mm2).into(),
-                            "partial".into(),
-                        )
+                        ((*a_over_lambda).into(), (*area_mm2).into(), "partial".into())
                     }
                     Area::Full { area_mm2 } => {
                         pts.push((f, *area_mm2));
                         (0.5.into(), (*area_mm2).into(), "full".into())
                     }
                     Area::Undefined(e) => {
-                        let note =
-                            format!("{label}, E* = {estar} MPa, F = {f} N: no contact area: {e}");
+                        let note = format!("{label}, E* = {estar} MPa, F = {f} N: no contact area: {e}");
                         if !notes.contains(&note) && notes.len() < 20 {
                             notes.push(note);
                         }
@@ -145,10 +140,7 @@ pub(super) fn run(
         Some(format!("full contact, {full_area_mm2:.0} mm²")),
         palette::GREY,
         1,
-        vec![
-            (loads[0], full_area_mm2),
-            (loads[loads.len() - 1], full_area_mm2),
-        ],
+        vec![(loads[0], full_area_mm2), (loads[loads.len() - 1], full_area_mm2)],
     ));
 
     let mut footer = vec![
@@ -160,7 +152,9 @@ pub(super) fn run(
         format!("Mean pressure p̄ = F/(πR²); area 2a·N·2R; τ_max = {tau} MPa enters the WNL polynomials in MPa."),
     ];
     if laws.iter().any(|(_, l)| l.is_extrapolated()) {
-        let note = format!("WNL is evaluated outside its fit domain (AR = {ar:.3}): an extrapolation, as in the paper.");
+        let note = format!(
+            "WNL is evaluated outside its fit domain (AR = {ar:.3}): an extrapolation, as in the paper."
+        );
         footer.push(note.clone());
         notes.push(note);
     }
@@ -191,7 +185,10 @@ pub(super) fn run(
                         "Measured points of Warman & Ennos (2009) NOT SHOWN: no data file at {rel} (schema: data/README.md)."
                     );
                     footer.push(note.clone());
-                    footer.push("No digitised copy is available to us; the points are never invented or simulated.".into());
+                    footer.push(
+                        "No digitised copy is available to us; the points are never invented or simulated."
+                            .into(),
+                    );
                     notes.push(note);
                 }
             }

@@ -5,6 +5,7 @@
 //! interrupted run never leaves a partial CSV or SVG behind.
 
 mod correction_surfaces;
+pub mod fe_cases;
 mod fe_vs_model;
 mod fingertip_area;
 pub mod measured;
@@ -29,14 +30,34 @@ pub struct SceneOutput {
     pub notes: Vec<String>,
 }
 
+/// How a run computes expensive cases.
+#[derive(Debug, Clone, Default)]
+pub struct RunOptions {
+    /// Parallelism, cache folder and shard of finite-element sweeps.
+    pub sweep: sweep::SweepOptions,
+    /// Replaces every FE section's mesh (tests use a coarse mesh to stay fast).
+    pub fe_mesh_override: Option<crate::fe::MeshLevel>,
+}
+
 /// Reads, parses and runs the spec at `path`; the output stem is the file stem.
-pub fn run_spec_file(path: &Path) -> Result<SceneOutput> {
+pub fn run_spec_file(path: &Path, opts: &RunOptions) -> Result<SceneOutput> {
     let spec = load_spec(path)?;
     run_spec(
         &spec,
         &stem_of(path)?,
         path.parent().unwrap_or(Path::new(".")),
+        opts,
     )
+}
+
+/// With a shard in `opts`: computes this shard's share of the spec's expensive cases into the
+/// cache and writes no figure. Returns (cases computed, cases already cached).
+pub fn compute_share(path: &Path, opts: &RunOptions) -> Result<(usize, usize)> {
+    let spec = load_spec(path)?;
+    match spec.scene() {
+        Scene::FeVsModel(s) => fe_vs_model::compute_share(s, opts),
+        _ => Ok((0, 0)),
+    }
 }
 
 /// Reads and parses the spec at `path`.
@@ -53,19 +74,14 @@ fn stem_of(path: &Path) -> Result<String> {
     path.file_stem()
         .and_then(|s| s.to_str())
         .map(String::from)
-        .with_context(|| {
-            format!(
-                "{}: the spec's file name is not valid UTF-8",
-                path.display()
-            )
-        })
+        .with_context(|| format!("{}: the spec's file name is not valid UTF-8", path.display()))
 }
 
 /// Runs a parsed spec. `spec_dir` resolves the spec's relative data paths.
-pub fn run_spec(spec: &Spec, stem: &str, spec_dir: &Path) -> Result<SceneOutput> {
+pub fn run_spec(spec: &Spec, stem: &str, spec_dir: &Path, opts: &RunOptions) -> Result<SceneOutput> {
     let (tables, figure, notes) = match spec.scene() {
         Scene::CorrectionSurfaces(s) => correction_surfaces::run(&spec.title, s)?,
-        Scene::FeVsModel(s) => fe_vs_model::run(&spec.title, s)?,
+        Scene::FeVsModel(s) => fe_vs_model::run(&spec.title, s, opts)?,
         Scene::FingertipArea(s) => fingertip_area::run(&spec.title, s, spec_dir)?,
     };
     let svg = crate::plot::render_svg(&figure)?;
@@ -79,8 +95,7 @@ pub fn run_spec(spec: &Spec, stem: &str, spec_dir: &Path) -> Result<SceneOutput>
 
 /// Writes a scene's SVG and CSVs into `dir`, each atomically; returns the paths written.
 pub fn write_outputs(out: &SceneOutput, dir: &Path) -> Result<Vec<PathBuf>> {
-    let mut files: Vec<(PathBuf, &[u8])> =
-        vec![(dir.join(format!("{}.svg", out.stem)), out.svg.as_bytes())];
+    let mut files: Vec<(PathBuf, &[u8])> = vec![(dir.join(format!("{}.svg", out.stem)), out.svg.as_bytes())];
     let csvs: Vec<(PathBuf, String)> = out
         .tables
         .iter()
@@ -100,8 +115,8 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         .parent()
         .filter(|d| !d.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    let mut tmp = tempfile::NamedTempFile::new_in(dir)
-        .with_context(|| format!("cannot write in {}", dir.display()))?;
+    let mut tmp =
+        tempfile::NamedTempFile::new_in(dir).with_context(|| format!("cannot write in {}", dir.display()))?;
     tmp.write_all(bytes)
         .with_context(|| format!("cannot write {}", path.display()))?;
     #[cfg(unix)]
@@ -135,12 +150,13 @@ impl CheckReport {
 
 /// Recomputes the spec at `path` and compares each table with `expected_dir/<file>.csv`
 /// within the spec's `[check]` tolerances.
-pub fn check_spec_file(path: &Path, expected_dir: &Path) -> Result<CheckReport> {
+pub fn check_spec_file(path: &Path, expected_dir: &Path, opts: &RunOptions) -> Result<CheckReport> {
     let spec = load_spec(path)?;
     let out = run_spec(
         &spec,
         &stem_of(path)?,
         path.parent().unwrap_or(Path::new(".")),
+        opts,
     )?;
     let (rel, abs) = (spec.check.rel_tol.get(), spec.check.abs_tol.get());
     let tables = out
@@ -177,12 +193,9 @@ pub(crate) fn model_laws(
         .map(|&name| {
             let law = match name {
                 ModelName::Westergaard => ModelLaw::Westergaard(Westergaard::new(aspect_ratio)),
-                ModelName::Wnl => ModelLaw::Wnl(Wnl::new(
-                    aspect_ratio,
-                    tau_max_mpa,
-                    sel.reading,
-                    coefficients,
-                )),
+                ModelName::Wnl => {
+                    ModelLaw::Wnl(Wnl::new(aspect_ratio, tau_max_mpa, sel.reading, coefficients))
+                }
             };
             (name, law)
         })

@@ -1,0 +1,160 @@
+//! Finite-element curves as sweep cases: what identifies one, and how it is cached.
+
+use super::sweep::{Cacheable, SweepCase};
+use crate::fe::{self, CurvePoint, Kinematics, LayerProblem, SolveOptions};
+use crate::spec::{FeSection, KinematicsName};
+
+/// Fingerprint of the solver's source (build.rs): a changed solver never reads old results.
+pub const FE_SOURCE_SHA256: &str = env!("WAVY_FE_SOURCE_SHA256");
+
+/// One FE curve: the physical problem, the numerical options, and the modulus that turns
+/// τ_max in MPa into τ_max/E*.
+#[derive(Debug, Clone)]
+pub struct FeCase {
+    pub problem: LayerProblem,
+    pub options: SolveOptions,
+    pub estar_mpa: f64,
+    pub tau_max_mpa: f64,
+    pub friction_coefficient: f64,
+}
+
+impl FeCase {
+    /// The case of one panel of a `[fe_vs_model.fe]` section.
+    pub fn from_section(fe: &FeSection, aspect_ratio: f64, tau_max_mpa: f64) -> Self {
+        let problem = LayerProblem {
+            aspect_ratio,
+            thickness_over_lambda: fe.thickness_over_lambda.get(),
+            kappa_over_g: fe.kappa_over_g.get(),
+            kinematics: match fe.kinematics {
+                KinematicsName::Finite => Kinematics::Finite,
+                KinematicsName::Linear => Kinematics::Linear,
+            },
+            interface: fe::Interface::Frictionless,
+        };
+        let options = SolveOptions {
+            until_a_over_lambda: fe.until_a_over_lambda.get(),
+            mesh: fe.mesh.0,
+            ..SolveOptions::default()
+        };
+        FeCase {
+            problem,
+            options,
+            estar_mpa: fe.estar_mpa.get(),
+            tau_max_mpa,
+            friction_coefficient: fe.friction_coefficient.get(),
+        }
+    }
+
+    /// Runs the solver.
+    pub fn solve(&self) -> FeOutcome {
+        match fe::solve_curve(&self.problem, &self.options, &mut |_| {}) {
+            Ok(curve) => FeOutcome {
+                points: curve.points,
+                failure: None,
+            },
+            Err(f) => FeOutcome {
+                points: f.points.clone(),
+                failure: Some(f.error.to_string()),
+            },
+        }
+    }
+}
+
+impl SweepCase for FeCase {
+    fn key_text(&self) -> String {
+        // Debug prints every field, floats in shortest round-trip form: exact.
+        format!(
+            "wavy fe curve\nsolver source sha256 {FE_SOURCE_SHA256}\nproblem {:?}\noptions {:?}\nestar_mpa {:?} tau_max_mpa {:?} friction_coefficient {:?}",
+            self.problem, self.options, self.estar_mpa, self.tau_max_mpa, self.friction_coefficient
+        )
+    }
+
+    fn label(&self) -> String {
+        format!(
+            "AR = {}, τ_max = {} MPa",
+            self.problem.aspect_ratio, self.tau_max_mpa
+        )
+    }
+}
+
+/// A computed curve, complete or not.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FeOutcome {
+    pub points: Vec<CurvePoint>,
+    /// The solver's error when it stopped before the target a/λ.
+    pub failure: Option<String>,
+}
+
+impl Cacheable for FeOutcome {
+    fn to_cache_text(&self) -> String {
+        let mut s = String::from("status ");
+        s.push_str(
+            self.failure
+                .as_deref()
+                .map_or("ok".into(), |f| format!("failed: {}", f.replace('\n', " ")))
+                .as_str(),
+        );
+        s.push('\n');
+        s.push_str(crate::cli::SOLVE_HEADER);
+        s.push('\n');
+        for p in &self.points {
+            s.push_str(&crate::cli::solve_row(p));
+            s.push('\n');
+        }
+        s
+    }
+
+    fn from_cache_text(text: &str) -> Option<Self> {
+        let mut lines = text.lines();
+        let status = lines.next()?.strip_prefix("status ")?;
+        let failure = match status {
+            "ok" => None,
+            f => Some(f.strip_prefix("failed: ")?.to_string()),
+        };
+        if lines.next()? != crate::cli::SOLVE_HEADER {
+            return None;
+        }
+        let points = lines
+            .map(|l| {
+                let f: Vec<&str> = l.split(',').collect();
+                if f.len() != 6 {
+                    return None;
+                }
+                Some(CurvePoint {
+                    a_over_lambda: f[0].parse().ok()?,
+                    p_over_estar: f[1].parse().ok()?,
+                    p_over_estar_reaction: f[2].parse().ok()?,
+                    slab_displacement_over_lambda: f[3].parse().ok()?,
+                    newton_iterations: f[4].parse().ok()?,
+                    active_nodes: f[5].parse().ok()?,
+                })
+            })
+            .collect::<Option<Vec<_>>>()?;
+        Some(FeOutcome { points, failure })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cache_text_round_trips_exactly() {
+        let p = CurvePoint {
+            a_over_lambda: 0.1 + 0.2,
+            p_over_estar: std::f64::consts::PI / 7.0,
+            p_over_estar_reaction: 1.0 / 3.0,
+            slab_displacement_over_lambda: -1e-17,
+            newton_iterations: 4,
+            active_nodes: 17,
+        };
+        for failure in [None, Some("Newton diverged at load step 3".to_string())] {
+            let o = FeOutcome {
+                points: vec![p, p],
+                failure,
+            };
+            assert_eq!(FeOutcome::from_cache_text(&o.to_cache_text()), Some(o));
+        }
+        assert_eq!(FeOutcome::from_cache_text("status ok\nwrong header\n"), None);
+    }
+}
