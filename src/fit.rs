@@ -75,15 +75,24 @@ fn regressors(s: &CurveSample, reading: Reading) -> [f64; 12] {
 
 /// Fits the twelve coefficients of `reading` to `samples` in the least-squares sense.
 /// `domain` records where the result is valid (the span of the samples, normally).
-pub fn refit(samples: &[CurveSample], reading: Reading, domain: FitDomain) -> Result<Refit, FitError> {
+pub fn refit(
+    samples: &[CurveSample],
+    reading: Reading,
+    domain: FitDomain,
+) -> Result<Refit, FitError> {
     let n = samples.len();
     if n < 12 {
         return Err(FitError::TooFewSamples { samples: n });
     }
     if let Some((index, sample)) = samples.iter().enumerate().find(|(_, s)| {
-        ![s.aspect_ratio, s.tau_max_mpa, s.a_over_lambda, s.p_over_estar]
-            .iter()
-            .all(|v| v.is_finite())
+        ![
+            s.aspect_ratio,
+            s.tau_max_mpa,
+            s.a_over_lambda,
+            s.p_over_estar,
+        ]
+        .iter()
+        .all(|v| v.is_finite())
     }) {
         return Err(FitError::NotFinite {
             index,
@@ -104,9 +113,9 @@ pub fn refit(samples: &[CurveSample], reading: Reading, domain: FitDomain) -> Re
     let rhs = Mat::from_fn(n, 1, |i, _| samples[i].p_over_estar);
 
     let sv = design.singular_values().map_err(|_| FitError::Svd)?;
-    let (smax, smin) = sv
-        .iter()
-        .fold((0.0_f64, f64::INFINITY), |(hi, lo), &s| (hi.max(s), lo.min(s)));
+    let (smax, smin) = sv.iter().fold((0.0_f64, f64::INFINITY), |(hi, lo), &s| {
+        (hi.max(s), lo.min(s))
+    });
     let condition_number = smax / smin;
     if !condition_number.is_finite() || condition_number > 1e12 {
         return Err(FitError::RankDeficient { condition_number });
@@ -223,7 +232,11 @@ mod tests {
             v.p_over_estar += 1e-3 * ((i * 7919 % 13) as f64 - 6.0) / 6.0;
         }
         let fit = refit(&s, Reading::BracketSq, FitDomain::PAPER).unwrap();
-        assert!(fit.relative_optimality < 1e-10, "{}", fit.relative_optimality);
+        assert!(
+            fit.relative_optimality < 1e-10,
+            "{}",
+            fit.relative_optimality
+        );
         assert!(fit.mse > 0.0 && fit.mse < 1e-6);
         assert!((mse(&s, Reading::BracketSq, fit.coefficients) - fit.mse).abs() < 1e-15);
     }

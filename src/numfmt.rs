@@ -25,7 +25,9 @@ pub fn sig_digits(x: f64, digits: usize) -> String {
     let digits = digits.max(1);
     // Round once, in scientific form; then decide how to print the rounded value.
     let sci = format!("{:.*e}", digits - 1, x);
-    let (mantissa, exponent) = sci.split_once('e').expect("`{:e}` always writes an exponent");
+    let (mantissa, exponent) = sci
+        .split_once('e')
+        .expect("`{:e}` always writes an exponent");
     let exponent: i32 = exponent.parse().expect("exponent is an integer");
     let rounded: f64 = sci.parse().expect("formatted float parses");
     if rounded == 0.0 {

@@ -29,7 +29,9 @@ pub enum SpecError {
         field: String,
         message: String,
     },
-    #[error("{origin}: field `{field}`{location}: value {value} is out of range; allowed: {allowed}")]
+    #[error(
+        "{origin}: field `{field}`{location}: value {value} is out of range; allowed: {allowed}"
+    )]
     Invalid {
         origin: String,
         field: String,
@@ -242,7 +244,11 @@ pub struct Grid {
 impl Grid {
     /// The grid's values; `min + i·(max − min)/(count − 1)`, the last one exactly `max`.
     pub fn values(&self) -> Vec<f64> {
-        let (lo, hi, n) = (*self.min.get_ref(), *self.max.get_ref(), *self.count.get_ref());
+        let (lo, hi, n) = (
+            *self.min.get_ref(),
+            *self.max.get_ref(),
+            *self.count.get_ref(),
+        );
         (0..n)
             .map(|i| {
                 if i + 1 == n {
@@ -362,7 +368,11 @@ impl Spec {
 
     /// The one scene of this spec.
     pub fn scene(&self) -> Scene<'_> {
-        match (&self.correction_surfaces, &self.fe_vs_model, &self.fingertip_area) {
+        match (
+            &self.correction_surfaces,
+            &self.fe_vs_model,
+            &self.fingertip_area,
+        ) {
             (Some(s), None, None) => Scene::CorrectionSurfaces(s),
             (None, Some(s), None) => Scene::FeVsModel(s),
             (None, None, Some(s)) => Scene::FingertipArea(s),
@@ -384,7 +394,8 @@ impl Spec {
                 field: "(scene table)".into(),
                 location: Location(None),
                 value: format!("{n} scene tables"),
-                allowed: "exactly one of [correction_surfaces], [fe_vs_model], [fingertip_area]".into(),
+                allowed: "exactly one of [correction_surfaces], [fe_vs_model], [fingertip_area]"
+                    .into(),
             });
         }
         if let Some(s) = &self.correction_surfaces {
@@ -405,7 +416,10 @@ impl Spec {
                 "correction_surfaces.line_aspect_ratios",
                 s.line_aspect_ratios.len(),
             )?;
-            v.non_empty("correction_surfaces.line_tau_max_mpa", s.line_tau_max_mpa.len())?;
+            v.non_empty(
+                "correction_surfaces.line_tau_max_mpa",
+                s.line_tau_max_mpa.len(),
+            )?;
         }
         if let Some(s) = &self.fe_vs_model {
             v.non_empty("fe_vs_model.aspect_ratios", s.aspect_ratios.len())?;
@@ -441,7 +455,12 @@ impl Spec {
             }
         }
         if let Some(s) = &self.fingertip_area {
-            v.grid("fingertip_area.load_n", &s.load_n, (0.0, f64::INFINITY), true)?;
+            v.grid(
+                "fingertip_area.load_n",
+                &s.load_n,
+                (0.0, f64::INFINITY),
+                true,
+            )?;
             v.models("fingertip_area.models", &s.models)?;
             let [lo, hi] = s.estar_band_mpa.map(Bounded::get);
             let e = s.estar_mpa.get();
@@ -491,7 +510,13 @@ impl Validator<'_> {
         }
     }
 
-    fn grid(&self, field: &str, g: &Grid, bounds: (f64, f64), closed_low: bool) -> Result<(), SpecError> {
+    fn grid(
+        &self,
+        field: &str,
+        g: &Grid,
+        bounds: (f64, f64),
+        closed_low: bool,
+    ) -> Result<(), SpecError> {
         let (lo, hi) = bounds;
         let low_text = if closed_low {
             format!("[{lo}")
@@ -499,7 +524,8 @@ impl Validator<'_> {
             format!("({lo}")
         };
         let allowed = format!("{low_text}, {hi}]");
-        let in_range = |x: f64| x.is_finite() && (if closed_low { x >= lo } else { x > lo }) && x <= hi;
+        let in_range =
+            |x: f64| x.is_finite() && (if closed_low { x >= lo } else { x > lo }) && x <= hi;
         for (name, s) in [("min", &g.min), ("max", &g.max)] {
             if !in_range(*s.get_ref()) {
                 return Err(self.invalid(

@@ -3,8 +3,8 @@
 use wavy::runner::run_spec_file;
 
 fn fig2() -> wavy::table::Table {
-    let spec =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("experiments/fig2_correction_surfaces.toml");
+    let spec = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("experiments/fig2_correction_surfaces.toml");
     run_spec_file(&spec, &Default::default())
         .unwrap()
         .tables

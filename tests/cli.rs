@@ -68,7 +68,10 @@ fn eval_westergaard_matches_r4_to_1e_12() {
     assert_eq!(rows.len(), 3);
     for (x, p) in rows {
         let expected = PI * 0.18 * (PI * x).sin().powi(2); // R4
-        assert!((p - expected).abs() <= 1e-12 * expected, "{p} vs {expected}");
+        assert!(
+            (p - expected).abs() <= 1e-12 * expected,
+            "{p} vs {expected}"
+        );
     }
 }
 
@@ -92,7 +95,10 @@ fn eval_wnl_matches_r5_to_1e_12_and_inverts() {
     );
     let (x, p) = eval_rows(&o)[0];
     let expected = PI * 0.1 * (PI * x).sin().powi(2) * (b + x * a * (PI * x).cos().powi(2));
-    assert!((p - expected).abs() <= 1e-12 * expected, "{p} vs {expected}");
+    assert!(
+        (p - expected).abs() <= 1e-12 * expected,
+        "{p} vs {expected}"
+    );
     // The inverse returns the a/λ that the forward call maps to the printed p̄/E*.
     let o = wavy(
         &[
@@ -118,7 +124,14 @@ fn eval_rejects_out_of_range_flags_with_exit_2() {
             "--ar = -1 is out of range; allowed: > 0",
         ),
         (
-            &["--ar", "0.1", "--tau-max-mpa", "-0.1", "--a-over-lambda", "0.2"],
+            &[
+                "--ar",
+                "0.1",
+                "--tau-max-mpa",
+                "-0.1",
+                "--a-over-lambda",
+                "0.2",
+            ],
             "--tau-max-mpa = -0.1 is out of range; allowed: >= 0",
         ),
         (
@@ -171,9 +184,15 @@ fn bad_spec(source: &str, from: &str, to: &str, expected: &[&str]) {
     assert_eq!(o.status.code(), Some(2), "exit code for {to}");
     let err = stderr(&o);
     for part in expected {
-        assert!(err.contains(part), "message for `{to}` lacks `{part}`:\n{err}");
+        assert!(
+            err.contains(part),
+            "message for `{to}` lacks `{part}`:\n{err}"
+        );
     }
-    assert!(!dir.path().join("out").exists(), "bad input must write nothing");
+    assert!(
+        !dir.path().join("out").exists(),
+        "bad input must write nothing"
+    );
 }
 
 #[test]

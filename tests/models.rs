@@ -25,7 +25,11 @@ fn westergaard_full_contact_pressure_is_pi_estar_delta_over_lambda() {
         assert_rel(w.full_contact_p_over_estar(), PI * ar, 1e-15);
     }
     // At a/λ = 1/4, sin²(π/4) = 1/2: p̄/E* = π·AR/2.
-    assert_rel(Westergaard::new(0.1).p_over_estar(0.25), PI * 0.1 / 2.0, 1e-15);
+    assert_rel(
+        Westergaard::new(0.1).p_over_estar(0.25),
+        PI * 0.1 / 2.0,
+        1e-15,
+    );
 }
 
 #[test]
@@ -102,8 +106,8 @@ fn inverse_of_forward_is_the_identity_to_1e_12() {
     for law in &laws {
         for i in 1..=49 {
             let x = i as f64 / 100.0;
-            let back =
-                a_over_lambda_at(law, law.p_over_estar(x)).unwrap_or_else(|e| panic!("{law:?} at {x}: {e}"));
+            let back = a_over_lambda_at(law, law.p_over_estar(x))
+                .unwrap_or_else(|e| panic!("{law:?} at {x}: {e}"));
             worst = worst.max((back - x).abs() / x);
         }
     }

@@ -21,7 +21,8 @@ fn experiment_outputs() {
 
 #[test]
 fn outputs_are_byte_identical_across_runs() {
-    let spec = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("experiments/fig5_warman_ennos.toml");
+    let spec =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("experiments/fig5_warman_ennos.toml");
     let a = wavy::runner::run_spec_file(&spec, &Default::default()).unwrap();
     let b = wavy::runner::run_spec_file(&spec, &Default::default()).unwrap();
     assert_eq!(a.svg, b.svg);

@@ -29,7 +29,10 @@ pub fn p_at(points: &[CurvePoint], a_over_lambda: f64) -> Option<f64> {
     let lo = k.saturating_sub(2);
     let hi = (lo + 4).min(n);
     let lo = hi.saturating_sub(4);
-    let ys: Vec<f64> = points.iter().map(|p| p.p_over_estar.max(0.0).sqrt()).collect();
+    let ys: Vec<f64> = points
+        .iter()
+        .map(|p| p.p_over_estar.max(0.0).sqrt())
+        .collect();
     let mut s = 0.0;
     for i in lo..hi {
         let mut l = 1.0;
@@ -73,7 +76,11 @@ pub struct ConvergenceTable {
 pub fn convergence_table(curves: [&[CurvePoint]; 3], a_values: &[f64]) -> Option<ConvergenceTable> {
     let mut vals = Vec::new();
     for &a in a_values {
-        let f = [p_at(curves[0], a)?, p_at(curves[1], a)?, p_at(curves[2], a)?];
+        let f = [
+            p_at(curves[0], a)?,
+            p_at(curves[1], a)?,
+            p_at(curves[2], a)?,
+        ];
         vals.push((a, f));
     }
     let (mut s12, mut s23) = (0.0, 0.0);
@@ -107,7 +114,10 @@ pub fn mesh_convergence(
 ) -> Result<ConvergenceTable, Box<CurveFailure>> {
     let mut curves = Vec::new();
     for level in [MeshLevel::Coarse, MeshLevel::Default, MeshLevel::Fine] {
-        let o = SolveOptions { mesh: level, ..*opts };
+        let o = SolveOptions {
+            mesh: level,
+            ..*opts
+        };
         curves.push(solve_curve(problem, &o, &mut |_| {})?.points);
     }
     convergence_table([&curves[0], &curves[1], &curves[2]], a_values).ok_or_else(|| {

@@ -29,9 +29,7 @@ pub enum SolveError {
     },
     /// Every trial configuration had an inverted element (J ≤ 0) even after the
     /// maximum number of step cuts.
-    #[error(
-        "element inversion (J <= 0) at load step {step}, iteration {iteration}, residual norm {residual:.3e}"
-    )]
+    #[error("element inversion (J <= 0) at load step {step}, iteration {iteration}, residual norm {residual:.3e}")]
     Inverted {
         /// Load step (1-based).
         step: usize,

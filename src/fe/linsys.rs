@@ -124,15 +124,22 @@ impl SparseSystem {
 
     /// Solve `A x = b` in place (`b` is overwritten by `x`).
     pub fn solve_in_place(&mut self, b: &mut [f64]) -> Result<(), LinSolveError> {
-        let sym = SymbolicSparseColMatRef::new_checked(self.n, self.n, &self.col_ptr, None, &self.row_idx);
+        let sym = SymbolicSparseColMatRef::new_checked(
+            self.n,
+            self.n,
+            &self.col_ptr,
+            None,
+            &self.row_idx,
+        );
         if self.symbolic.is_none() {
-            self.symbolic =
-                Some(SymbolicLu::try_new(sym).map_err(|e| LinSolveError::Symbolic(format!("{e:?}")))?);
+            self.symbolic = Some(
+                SymbolicLu::try_new(sym).map_err(|e| LinSolveError::Symbolic(format!("{e:?}")))?,
+            );
         }
         let symbolic = self.symbolic.clone().expect("symbolic set above");
         let mat = SparseColMatRef::new(sym, &self.values);
-        let lu =
-            Lu::try_new_with_symbolic(symbolic, mat).map_err(|e| LinSolveError::Numeric(format!("{e:?}")))?;
+        let lu = Lu::try_new_with_symbolic(symbolic, mat)
+            .map_err(|e| LinSolveError::Numeric(format!("{e:?}")))?;
         lu.solve_in_place(ColMut::from_slice_mut(b));
         if b.iter().any(|v| !v.is_finite()) {
             return Err(LinSolveError::Numeric("non-finite solution".into()));

@@ -69,7 +69,8 @@ impl NeoHooke {
         if j <= 0.0 || !j.is_finite() {
             return None;
         }
-        let i1 = f[0][0] * f[0][0] + f[0][1] * f[0][1] + f[1][0] * f[1][0] + f[1][1] * f[1][1] + 1.0;
+        let i1 =
+            f[0][0] * f[0][0] + f[0][1] * f[0][1] + f[1][0] * f[1][0] + f[1][1] * f[1][1] + 1.0;
         Some(0.5 * self.g * (j.powf(-2.0 / 3.0) * i1 - 3.0))
     }
 
@@ -80,7 +81,8 @@ impl NeoHooke {
         if j <= 0.0 || !j.is_finite() {
             return None;
         }
-        let i1 = f[0][0] * f[0][0] + f[0][1] * f[0][1] + f[1][0] * f[1][0] + f[1][1] * f[1][1] + 1.0;
+        let i1 =
+            f[0][0] * f[0][0] + f[0][1] * f[0][1] + f[1][0] * f[1][0] + f[1][1] * f[1][1] + 1.0;
         let a = j.powf(-2.0 / 3.0);
         let inv_j = 1.0 / j;
         // F⁻ᵀ = cof(F)/J
@@ -105,7 +107,8 @@ impl NeoHooke {
                         for l in 0..2 {
                             let delta = if i == k && jj == l { 1.0 } else { 0.0 };
                             t[i][jj][k][l] = ga
-                                * (delta - 2.0 / 3.0 * (fit[k][l] * f[i][jj] + f[k][l] * fit[i][jj])
+                                * (delta
+                                    - 2.0 / 3.0 * (fit[k][l] * f[i][jj] + f[k][l] * fit[i][jj])
                                     + 2.0 / 9.0 * i1 * fit[i][jj] * fit[k][l]
                                     + i1 / 3.0 * fit[i][l] * fit[k][jj]);
                         }

@@ -222,7 +222,12 @@ impl Curve {
     }
 }
 
-fn check_range(field: &'static str, value: f64, ok: bool, allowed: &'static str) -> Result<(), SolveError> {
+fn check_range(
+    field: &'static str,
+    value: f64,
+    ok: bool,
+    allowed: &'static str,
+) -> Result<(), SolveError> {
     if ok && value.is_finite() {
         Ok(())
     } else {

@@ -260,7 +260,9 @@ impl Model {
         let mut e = 0.0;
         for k in 0..self.mesh.quads.len() {
             e += match self.kin {
-                Kinematics::Finite => element::energy(&self.refs[k], &self.mat, &self.elem_x(st, k))?,
+                Kinematics::Finite => {
+                    element::energy(&self.refs[k], &self.mat, &self.elem_x(st, k))?
+                }
                 Kinematics::Linear => self.linear_elem(st, k).0,
             };
         }
@@ -340,7 +342,11 @@ impl Model {
                 }
             }
         }
-        Some(Forces { energy, grad, resid })
+        Some(Forces {
+            energy,
+            grad,
+            resid,
+        })
     }
 
     /// Apply the Newton update `α δ` (slot-wise) to `base`. Sliding nodes move in `x`

@@ -54,7 +54,10 @@ impl StepFail {
                 slab_displacement_over_lambda: d,
                 reason,
             },
-            StepFail::Inverted { iteration, residual } => SolveError::Inverted {
+            StepFail::Inverted {
+                iteration,
+                residual,
+            } => SolveError::Inverted {
                 step,
                 iteration,
                 residual,
@@ -74,7 +77,11 @@ fn inf_norm(v: &[f64]) -> f64 {
 }
 
 /// Newton iterations at a fixed active set. Returns the number of iterations.
-pub(crate) fn newton(model: &mut Model, st: &mut State, opts: &SolveOptions) -> Result<usize, StepFail> {
+pub(crate) fn newton(
+    model: &mut Model,
+    st: &mut State,
+    opts: &SolveOptions,
+) -> Result<usize, StepFail> {
     let mut last_res = f64::NAN;
     for it in 0..=opts.max_newton_iterations {
         let Some(f) = model.assemble(st, true) else {
@@ -145,7 +152,11 @@ pub(crate) fn newton(model: &mut Model, st: &mut State, opts: &SolveOptions) -> 
 
 /// Converge one load step: Newton + active-set updates. Returns total Newton
 /// iterations.
-pub(crate) fn equilibrate(model: &mut Model, st: &mut State, opts: &SolveOptions) -> Result<usize, StepFail> {
+pub(crate) fn equilibrate(
+    model: &mut Model,
+    st: &mut State,
+    opts: &SolveOptions,
+) -> Result<usize, StepFail> {
     let mut total = 0;
     for _ in 0..opts.max_active_set_updates {
         total += newton(model, st, opts)?;
@@ -219,7 +230,8 @@ fn deformed_state(model: &Model, st: &State, lam: &[f64], estar: f64) -> Deforme
     };
     let pressure = (0..n)
         .map(|k| {
-            let trib = 0.5 * (if k > 0 { seg(k - 1) } else { 0.0 } + if k + 1 < n { seg(k) } else { 0.0 });
+            let trib =
+                0.5 * (if k > 0 { seg(k - 1) } else { 0.0 } + if k + 1 < n { seg(k) } else { 0.0 });
             let s = match model.kin {
                 Kinematics::Finite => model.indenter.slope(pos(k)[0]),
                 Kinematics::Linear => 0.0,
@@ -335,5 +347,8 @@ pub(crate) fn trace(
         }
     }
     let final_state = deformed_state(model, &cur, &last_lam, estar);
-    Ok(Curve { points, final_state })
+    Ok(Curve {
+        points,
+        final_state,
+    })
 }

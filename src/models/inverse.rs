@@ -33,12 +33,18 @@ pub enum InverseError {
         "the model gives a negative pressure p/E* = {p_over_estar:.6e} at a/λ = {a_over_lambda:.4}; \
          it has no physical inverse"
     )]
-    NegativeModel { a_over_lambda: f64, p_over_estar: f64 },
+    NegativeModel {
+        a_over_lambda: f64,
+        p_over_estar: f64,
+    },
     #[error(
         "the model is not monotonic in a/λ: p/E* decreases after a/λ = {a_over_lambda:.4} \
          (from {p_over_estar:.6}); the inverse would not be unique"
     )]
-    NonMonotonic { a_over_lambda: f64, p_over_estar: f64 },
+    NonMonotonic {
+        a_over_lambda: f64,
+        p_over_estar: f64,
+    },
     #[error("root finding failed: {0}")]
     RootFinding(String),
 }
@@ -57,7 +63,10 @@ pub fn check_invertible<L: PressureLaw + ?Sized>(law: &L) -> Result<(), InverseE
         .map(|s| s.1.abs())
         .fold(f64::MIN_POSITIVE, f64::max);
     let round_off = 1e-13 * scale;
-    if let Some(&(x, p)) = samples.iter().find(|s| s.1 < -round_off || !s.1.is_finite()) {
+    if let Some(&(x, p)) = samples
+        .iter()
+        .find(|s| s.1 < -round_off || !s.1.is_finite())
+    {
         return Err(InverseError::NegativeModel {
             a_over_lambda: x,
             p_over_estar: p,
@@ -73,7 +82,10 @@ pub fn check_invertible<L: PressureLaw + ?Sized>(law: &L) -> Result<(), InverseE
 }
 
 /// The contact half-width a/λ ∈ [0, ½] at which `law` gives the mean pressure `p_over_estar`.
-pub fn a_over_lambda_at<L: PressureLaw + ?Sized>(law: &L, p_over_estar: f64) -> Result<f64, InverseError> {
+pub fn a_over_lambda_at<L: PressureLaw + ?Sized>(
+    law: &L,
+    p_over_estar: f64,
+) -> Result<f64, InverseError> {
     if !p_over_estar.is_finite() || p_over_estar < 0.0 {
         return Err(InverseError::NegativeOrNotFinite { p_over_estar });
     }

@@ -57,7 +57,9 @@ impl FromStr for Reading {
         Reading::ALL
             .into_iter()
             .find(|r| r.name() == s)
-            .ok_or_else(|| format!("unknown reading `{s}`; allowed: bracket-sq, bracket-2x, literal"))
+            .ok_or_else(|| {
+                format!("unknown reading `{s}`; allowed: bracket-sq, bracket-2x, literal")
+            })
     }
 }
 
@@ -105,7 +107,12 @@ pub struct Wnl {
 }
 
 impl Wnl {
-    pub fn new(aspect_ratio: f64, tau_max_mpa: f64, reading: Reading, coefficients: Coefficients) -> Self {
+    pub fn new(
+        aspect_ratio: f64,
+        tau_max_mpa: f64,
+        reading: Reading,
+        coefficients: Coefficients,
+    ) -> Self {
         Self {
             aspect_ratio,
             tau_max_mpa,

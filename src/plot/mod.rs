@@ -25,8 +25,9 @@ fn err<E: std::fmt::Debug>(e: E) -> PlotError {
 
 fn ensure_font() {
     REGISTER.call_once(|| {
-        plotters::style::register_font(FONT, FontStyle::Normal, FONT_BYTES)
-            .unwrap_or_else(|_| panic!("the bundled font assets/fonts/DejaVuSans.ttf is not a valid font"));
+        plotters::style::register_font(FONT, FontStyle::Normal, FONT_BYTES).unwrap_or_else(|_| {
+            panic!("the bundled font assets/fonts/DejaVuSans.ttf is not a valid font")
+        });
     });
 }
 
@@ -54,29 +55,53 @@ pub struct Series {
 }
 
 impl Series {
-    pub fn line(label: Option<String>, color: RGBColor, width: u32, points: Vec<(f64, f64)>) -> Self {
+    pub fn line(
+        label: Option<String>,
+        color: RGBColor,
+        width: u32,
+        points: Vec<(f64, f64)>,
+    ) -> Self {
         Self {
             label,
             color,
-            style: Style::Line { width, dashed: false },
+            style: Style::Line {
+                width,
+                dashed: false,
+            },
             points,
             upper: vec![],
         }
     }
-    pub fn dashed(label: Option<String>, color: RGBColor, width: u32, points: Vec<(f64, f64)>) -> Self {
+    pub fn dashed(
+        label: Option<String>,
+        color: RGBColor,
+        width: u32,
+        points: Vec<(f64, f64)>,
+    ) -> Self {
         Self {
             label,
             color,
-            style: Style::Line { width, dashed: true },
+            style: Style::Line {
+                width,
+                dashed: true,
+            },
             points,
             upper: vec![],
         }
     }
-    pub fn markers(label: Option<String>, color: RGBColor, size: u32, points: Vec<(f64, f64)>) -> Self {
+    pub fn markers(
+        label: Option<String>,
+        color: RGBColor,
+        size: u32,
+        points: Vec<(f64, f64)>,
+    ) -> Self {
         Self {
             label,
             color,
-            style: Style::Markers { size, filled: false },
+            style: Style::Markers {
+                size,
+                filled: false,
+            },
             points,
             upper: vec![],
         }
@@ -166,7 +191,8 @@ pub fn render_svg(figure: &Figure) -> Result<String, PlotError> {
     ensure_font();
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (figure.width, figure.height)).into_drawing_area();
+        let root =
+            SVGBackend::with_string(&mut svg, (figure.width, figure.height)).into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
         let fs = figure.font_px;
         let root = root
@@ -195,14 +221,21 @@ pub fn render_svg(figure: &Figure) -> Result<String, PlotError> {
     Ok(svg)
 }
 
-fn draw_panel(area: &DrawingArea<SVGBackend<'_>, Shift>, panel: &Panel, fs: u32) -> Result<(), PlotError> {
+fn draw_panel(
+    area: &DrawingArea<SVGBackend<'_>, Shift>,
+    panel: &Panel,
+    fs: u32,
+) -> Result<(), PlotError> {
     let mut chart = ChartBuilder::on(area)
         .caption(&panel.title, (FONT, fs + 2).into_font())
         .margin(8)
         .margin_right(24)
         .x_label_area_size(fs * 2 + 14)
         .y_label_area_size(fs * 3 + 22)
-        .build_cartesian_2d(panel.x_range.0..panel.x_range.1, panel.y_range.0..panel.y_range.1)
+        .build_cartesian_2d(
+            panel.x_range.0..panel.x_range.1,
+            panel.y_range.0..panel.y_range.1,
+        )
         .map_err(err)?;
     chart
         .configure_mesh()
@@ -224,16 +257,25 @@ fn draw_panel(area: &DrawingArea<SVGBackend<'_>, Shift>, panel: &Panel, fs: u32)
                 let mut outline = s.points.clone();
                 outline.extend(s.upper.iter().rev().copied());
                 chart
-                    .draw_series(std::iter::once(Polygon::new(outline, color.mix(0.22).filled())))
+                    .draw_series(std::iter::once(Polygon::new(
+                        outline,
+                        color.mix(0.22).filled(),
+                    )))
                     .map_err(err)?
             }
-            Style::Line { width, dashed: false } => chart
+            Style::Line {
+                width,
+                dashed: false,
+            } => chart
                 .draw_series(LineSeries::new(
                     s.points.iter().copied(),
                     color.stroke_width(width),
                 ))
                 .map_err(err)?,
-            Style::Line { width, dashed: true } => chart
+            Style::Line {
+                width,
+                dashed: true,
+            } => chart
                 .draw_series(DashedLineSeries::new(
                     s.points.iter().copied(),
                     8,
@@ -254,20 +296,23 @@ fn draw_panel(area: &DrawingArea<SVGBackend<'_>, Shift>, panel: &Panel, fs: u32)
         };
         if let Some(label) = &s.label {
             let style = s.style;
-            anno.label(label)
-                .legend(move |(x, y)| -> DynElement<'static, SVGBackend, (i32, i32)> {
+            anno.label(label).legend(
+                move |(x, y)| -> DynElement<'static, SVGBackend, (i32, i32)> {
                     match style {
                         Style::Markers { size, .. } => {
                             Circle::new((x + 10, y), size, color.stroke_width(2)).into_dyn()
                         }
                         Style::Band => {
-                            Rectangle::new([(x, y - 5), (x + 20, y + 5)], color.mix(0.22).filled()).into_dyn()
+                            Rectangle::new([(x, y - 5), (x + 20, y + 5)], color.mix(0.22).filled())
+                                .into_dyn()
                         }
                         Style::Line { width, .. } => {
-                            PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(width)).into_dyn()
+                            PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(width))
+                                .into_dyn()
                         }
                     }
-                });
+                },
+            );
         }
     }
     if let Some(pos) = panel.legend {
@@ -289,7 +334,10 @@ fn draw_panel(area: &DrawingArea<SVGBackend<'_>, Shift>, panel: &Panel, fs: u32)
             .draw_text(
                 note,
                 &(FONT, fs - 1).into_font().color(&BLACK),
-                (pos.0 - plot.get_base_pixel().0, pos.1 - plot.get_base_pixel().1),
+                (
+                    pos.0 - plot.get_base_pixel().0,
+                    pos.1 - plot.get_base_pixel().1,
+                ),
             )
             .map_err(err)?;
     }

@@ -8,7 +8,10 @@ use crate::spec::CorrectionSurfacesScene;
 use crate::table::Table;
 use anyhow::Result;
 
-pub(super) fn run(title: &str, s: &CorrectionSurfacesScene) -> Result<(Vec<Table>, Figure, Vec<String>)> {
+pub(super) fn run(
+    title: &str,
+    s: &CorrectionSurfacesScene,
+) -> Result<(Vec<Table>, Figure, Vec<String>)> {
     let c = coefficient_sets::by_name(&s.coefficients).expect("validated when the spec is parsed");
     let ars = s.aspect_ratio.values();
     let taus = s.tau_max_mpa.values();
@@ -39,7 +42,11 @@ pub(super) fn run(title: &str, s: &CorrectionSurfacesScene) -> Result<(Vec<Table
     }
 
     let marked: Vec<f64> = s.marked_aspect_ratios.iter().map(|v| v.get()).collect();
-    let is_marked = |ar: f64| marked.iter().any(|m| (m - ar).abs() <= 1e-12 * m.abs().max(1.0));
+    let is_marked = |ar: f64| {
+        marked
+            .iter()
+            .any(|m| (m - ar).abs() <= 1e-12 * m.abs().max(1.0))
+    };
     let mut panels = vec![];
     for (name, coeffs) in [("A", &c.a), ("B", &c.b)] {
         // Against τ_max, one line per aspect ratio; the FE ones solid and thick.
@@ -50,7 +57,10 @@ pub(super) fn run(title: &str, s: &CorrectionSurfacesScene) -> Result<(Vec<Table
                 .map(|&t| (t, quadratic_surface(coeffs, ar, t)))
                 .collect();
             let color = palette::CYCLE[k % palette::CYCLE.len()];
-            let label = Some(format!("AR = {ar}{}", if is_marked(ar) { " (FE)" } else { "" }));
+            let label = Some(format!(
+                "AR = {ar}{}",
+                if is_marked(ar) { " (FE)" } else { "" }
+            ));
             vs_tau.push(if is_marked(ar) {
                 Series::line(label, color, 3, pts)
             } else {
@@ -65,7 +75,12 @@ pub(super) fn run(title: &str, s: &CorrectionSurfacesScene) -> Result<(Vec<Table
                 .map(|&r| (r, quadratic_surface(coeffs, r, tau)))
                 .collect();
             let color = palette::CYCLE[k % palette::CYCLE.len()];
-            vs_ar.push(Series::line(Some(format!("τ_max = {tau} MPa")), color, 2, pts));
+            vs_ar.push(Series::line(
+                Some(format!("τ_max = {tau} MPa")),
+                color,
+                2,
+                pts,
+            ));
         }
         let all = |series: &[Series]| {
             series

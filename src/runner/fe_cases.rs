@@ -155,6 +155,9 @@ mod tests {
             };
             assert_eq!(FeOutcome::from_cache_text(&o.to_cache_text()), Some(o));
         }
-        assert_eq!(FeOutcome::from_cache_text("status ok\nwrong header\n"), None);
+        assert_eq!(
+            FeOutcome::from_cache_text("status ok\nwrong header\n"),
+            None
+        );
     }
 }

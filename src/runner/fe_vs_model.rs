@@ -96,7 +96,10 @@ pub(super) fn run(
         mse_header.push(format!("max_abs_dev_{}", model_key(m)));
     }
     mse_header.push("fe_status".into());
-    let mut mse = Table::new("mse", &mse_header.iter().map(String::as_str).collect::<Vec<_>>());
+    let mut mse = Table::new(
+        "mse",
+        &mse_header.iter().map(String::as_str).collect::<Vec<_>>(),
+    );
 
     let mut panels = vec![];
     let mut extrapolated_panels = vec![];
@@ -139,7 +142,8 @@ pub(super) fn run(
                     3,
                     pts,
                 ));
-                let mut row: Vec<Cell> = vec![ar.into(), tau.into(), (fe.points.len() as f64).into()];
+                let mut row: Vec<Cell> =
+                    vec![ar.into(), tau.into(), (fe.points.len() as f64).into()];
                 for (name, law) in &laws {
                     let (m, d) = errors(law, fe);
                     row.push(m.into());

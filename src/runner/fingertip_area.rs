@@ -86,14 +86,19 @@ pub(super) fn run(
                         area_mm2,
                     } => {
                         pts.push((f, *area_mm2));
-                        ((*a_over_lambda).into(), (*area_mm2).into(), "partial".into())
+                        (
+                            (*a_over_lambda).into(),
+                            (*area_mm2).into(),
+                            "partial".into(),
+                        )
                     }
                     Area::Full { area_mm2 } => {
                         pts.push((f, *area_mm2));
                         (0.5.into(), (*area_mm2).into(), "full".into())
                     }
                     Area::Undefined(e) => {
-                        let note = format!("{label}, E* = {estar} MPa, F = {f} N: no contact area: {e}");
+                        let note =
+                            format!("{label}, E* = {estar} MPa, F = {f} N: no contact area: {e}");
                         if !notes.contains(&note) && notes.len() < 20 {
                             notes.push(note);
                         }
@@ -140,7 +145,10 @@ pub(super) fn run(
         Some(format!("full contact, {full_area_mm2:.0} mm²")),
         palette::GREY,
         1,
-        vec![(loads[0], full_area_mm2), (loads[loads.len() - 1], full_area_mm2)],
+        vec![
+            (loads[0], full_area_mm2),
+            (loads[loads.len() - 1], full_area_mm2),
+        ],
     ));
 
     let mut footer = vec![

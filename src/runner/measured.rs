@@ -64,7 +64,10 @@ pub fn parse(text: &str) -> Result<MeasuredPoints> {
     let mut r = csv::Reader::from_reader(body.as_bytes());
     let header: Vec<String> = r.headers()?.iter().map(String::from).collect();
     if header != ["load_n", "area_mm2"] {
-        bail!("header is `{}`; expected `load_n,area_mm2`", header.join(","));
+        bail!(
+            "header is `{}`; expected `load_n,area_mm2`",
+            header.join(",")
+        );
     }
     let mut points = vec![];
     for (i, rec) in r.records().enumerate() {

@@ -74,11 +74,21 @@ fn stem_of(path: &Path) -> Result<String> {
     path.file_stem()
         .and_then(|s| s.to_str())
         .map(String::from)
-        .with_context(|| format!("{}: the spec's file name is not valid UTF-8", path.display()))
+        .with_context(|| {
+            format!(
+                "{}: the spec's file name is not valid UTF-8",
+                path.display()
+            )
+        })
 }
 
 /// Runs a parsed spec. `spec_dir` resolves the spec's relative data paths.
-pub fn run_spec(spec: &Spec, stem: &str, spec_dir: &Path, opts: &RunOptions) -> Result<SceneOutput> {
+pub fn run_spec(
+    spec: &Spec,
+    stem: &str,
+    spec_dir: &Path,
+    opts: &RunOptions,
+) -> Result<SceneOutput> {
     let (tables, figure, notes) = match spec.scene() {
         Scene::CorrectionSurfaces(s) => correction_surfaces::run(&spec.title, s)?,
         Scene::FeVsModel(s) => fe_vs_model::run(&spec.title, s, opts)?,
@@ -95,7 +105,8 @@ pub fn run_spec(spec: &Spec, stem: &str, spec_dir: &Path, opts: &RunOptions) -> 
 
 /// Writes a scene's SVG and CSVs into `dir`, each atomically; returns the paths written.
 pub fn write_outputs(out: &SceneOutput, dir: &Path) -> Result<Vec<PathBuf>> {
-    let mut files: Vec<(PathBuf, &[u8])> = vec![(dir.join(format!("{}.svg", out.stem)), out.svg.as_bytes())];
+    let mut files: Vec<(PathBuf, &[u8])> =
+        vec![(dir.join(format!("{}.svg", out.stem)), out.svg.as_bytes())];
     let csvs: Vec<(PathBuf, String)> = out
         .tables
         .iter()
@@ -115,8 +126,8 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         .parent()
         .filter(|d| !d.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    let mut tmp =
-        tempfile::NamedTempFile::new_in(dir).with_context(|| format!("cannot write in {}", dir.display()))?;
+    let mut tmp = tempfile::NamedTempFile::new_in(dir)
+        .with_context(|| format!("cannot write in {}", dir.display()))?;
     tmp.write_all(bytes)
         .with_context(|| format!("cannot write {}", path.display()))?;
     #[cfg(unix)]
@@ -193,9 +204,12 @@ pub(crate) fn model_laws(
         .map(|&name| {
             let law = match name {
                 ModelName::Westergaard => ModelLaw::Westergaard(Westergaard::new(aspect_ratio)),
-                ModelName::Wnl => {
-                    ModelLaw::Wnl(Wnl::new(aspect_ratio, tau_max_mpa, sel.reading, coefficients))
-                }
+                ModelName::Wnl => ModelLaw::Wnl(Wnl::new(
+                    aspect_ratio,
+                    tau_max_mpa,
+                    sel.reading,
+                    coefficients,
+                )),
             };
             (name, law)
         })

@@ -42,7 +42,8 @@ pub struct Shard {
 impl FromStr for Shard {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        let bad = || format!("--shard = {s} is out of range; allowed: i/n with 0 <= i < n, e.g. 0/4");
+        let bad =
+            || format!("--shard = {s} is out of range; allowed: i/n with 0 <= i < n, e.g. 0/4");
         let (i, n) = s.split_once('/').ok_or_else(bad)?;
         let (index, count): (usize, usize) = (
             i.trim().parse().map_err(|_| bad())?,
@@ -98,8 +99,12 @@ pub fn run<C: SweepCase, R: Cacheable>(
     if opts.jobs == 0 {
         bail!("--jobs = 0 is out of range; allowed: >= 1");
     }
-    std::fs::create_dir_all(&opts.cache_dir)
-        .with_context(|| format!("cannot create the cache folder {}", opts.cache_dir.display()))?;
+    std::fs::create_dir_all(&opts.cache_dir).with_context(|| {
+        format!(
+            "cannot create the cache folder {}",
+            opts.cache_dir.display()
+        )
+    })?;
     let mine = |i: usize| opts.shard.is_none_or(|s| i % s.count == s.index);
     let mut results: Vec<Option<R>> = Vec::with_capacity(cases.len());
     let mut todo = vec![];
@@ -129,7 +134,8 @@ pub fn run<C: SweepCase, R: Cacheable>(
                     case.key_text().replace('\n', "\n# "),
                     r.to_cache_text()
                 );
-                let stored = write_atomic(&cache_path(&opts.cache_dir, case), text.as_bytes()).map(|_| r);
+                let stored =
+                    write_atomic(&cache_path(&opts.cache_dir, case), text.as_bytes()).map(|_| r);
                 if let Some(b) = &bar {
                     b.inc(1);
                     b.set_message(case.label());
@@ -161,7 +167,11 @@ fn cached_result<R: Cacheable>(text: &str, key_text: &str) -> Option<R> {
             return None;
         }
     }
-    let body: String = text.lines().skip(key_lines).map(|l| format!("{l}\n")).collect();
+    let body: String = text
+        .lines()
+        .skip(key_lines)
+        .map(|l| format!("{l}\n"))
+        .collect();
     R::from_cache_text(&body)
 }
 
@@ -239,7 +249,10 @@ mod tests {
         assert_eq!("2/4".parse::<Shard>(), Ok(Shard { index: 2, count: 4 }));
         for bad in ["4/4", "1/0", "a/2", "3"] {
             let e = bad.parse::<Shard>().unwrap_err();
-            assert!(e.contains(&format!("--shard = {bad} is out of range")), "{e}");
+            assert!(
+                e.contains(&format!("--shard = {bad} is out of range")),
+                "{e}"
+            );
         }
     }
 }
