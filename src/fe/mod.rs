@@ -142,8 +142,11 @@ pub struct SolveOptions {
     pub max_active_set_updates: usize,
     /// Relative residual tolerance (w.r.t. the largest nodal force).
     pub residual_rtol: f64,
-    /// Absolute residual tolerance (units `G λ`).
+    /// Absolute residual tolerance in units of `(G + κ) λ` (the round-off floor of the
+    /// nodal forces grows with `κ`).
     pub residual_atol: f64,
+    /// Newton corrections below this (`∞`-norm, units of λ) count as converged.
+    pub increment_atol: f64,
     /// Release threshold: `λ < −multiplier_rtol · max|λ|`.
     pub multiplier_rtol: f64,
     /// Activation threshold: penetration deeper than this times `Δ`.
@@ -167,7 +170,8 @@ impl Default for SolveOptions {
             max_line_search: 40,
             max_active_set_updates: 40,
             residual_rtol: 1e-10,
-            residual_atol: 1e-14,
+            residual_atol: 1e-13,
+            increment_atol: 1e-14,
             multiplier_rtol: 1e-9,
             gap_tolerance_over_amplitude: 1e-10,
         }

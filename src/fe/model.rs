@@ -54,6 +54,9 @@ pub struct Forces {
     pub grad: Vec<f64>,
     /// Reduced residual per slot (0 on constrained slots).
     pub resid: Vec<f64>,
+    /// Largest element-level nodal force component (the round-off scale of the
+    /// assembled residual).
+    pub force_scale: f64,
 }
 
 /// The discrete model.
@@ -276,6 +279,7 @@ impl Model {
         let map = self.slot_map(st);
         let mut grad = vec![0.0; 2 * nn];
         let mut energy = 0.0;
+        let mut force_scale = 0.0_f64;
         if with_matrix {
             self.sys.clear();
         }
@@ -292,6 +296,7 @@ impl Model {
                 }
             };
             energy += en;
+            force_scale = g.iter().fold(force_scale, |m, v| m.max(v.abs()));
             for a in 0..4 {
                 grad[2 * q[a]] += g[2 * a];
                 grad[2 * q[a] + 1] += g[2 * a + 1];
@@ -346,6 +351,7 @@ impl Model {
             energy,
             grad,
             resid,
+            force_scale,
         })
     }
 

@@ -5,7 +5,10 @@
 //!   factorisation reused), backtracking line search on the energy `Π` (Armijo,
 //!   `c = 10⁻⁴`); if the Newton direction is not a descent direction the residual norm
 //!   is used instead. Inverted trial configurations (`J ≤ 0`) have `Π = +∞` and are
-//!   backtracked. Convergence: `‖r‖∞ ≤ rtol · max|∂Π/∂x| + atol`.
+//!   backtracked. Convergence: `‖r‖∞ ≤ rtol · f_e + atol`, `f_e` the largest
+//!   element-level nodal force (the round-off scale of the assembled residual) and
+//!   `atol = residual_atol · (G + κ) λ`; an iteration whose correction is below
+//!   `increment_atol` (round-off of the positions) also ends the iteration.
 //! * Active set: after each converged Newton solve, release nodes with `λ < 0`,
 //!   activate penetrating nodes, repeat (see [`super::contact`]).
 //! * Load stepping in the slab displacement `d`: the increment is adapted so that the
@@ -91,9 +94,10 @@ pub(crate) fn newton(
             });
         };
         let res = inf_norm(&f.resid);
-        let scale = inf_norm(&f.grad);
+        let scale = f.force_scale;
         last_res = res;
-        if res <= opts.residual_rtol * scale + opts.residual_atol {
+        let atol = opts.residual_atol * (model.mat.g + model.mat.kappa);
+        if res <= opts.residual_rtol * scale + atol {
             return Ok(it);
         }
         if it == opts.max_newton_iterations || !res.is_finite() {
@@ -105,6 +109,11 @@ pub(crate) fn newton(
                 iteration: it,
                 message: e.to_string(),
             });
+        }
+        if inf_norm(&dq) <= opts.increment_atol {
+            // correction below the round-off of the positions: converged
+            *st = model.updated(st, &dq, 1.0);
+            return Ok(it + 1);
         }
         if model.kin == Kinematics::Linear {
             // quadratic energy: the Newton step is exact
