@@ -1,12 +1,28 @@
 //! Pins every experiment's numbers and figure: one snapshot per spec for each CSV table (numbers
 //! through the shared six-significant-digit formatter, `wavy::numfmt`) and one for its SVG.
-//! A snapshot only says "did our output change?"; review changes with `cargo insta review`.
+//! Finite-element sections run on the coarse mesh here (fast enough for CI) and with a fresh
+//! cache, so the snapshots pin the solver itself, not a cache. A snapshot only says "did our
+//! output change?"; review changes with `cargo insta review`.
+
+use wavy::fe::MeshLevel;
+use wavy::runner::{run_spec_file, RunOptions};
+
+fn test_options(cache: &std::path::Path) -> RunOptions {
+    let mut opts = RunOptions {
+        fe_mesh_override: Some(MeshLevel::Coarse),
+        ..RunOptions::default()
+    };
+    opts.sweep.cache_dir = cache.to_path_buf();
+    opts
+}
 
 #[test]
 fn experiment_outputs() {
+    let cache = tempfile::tempdir().unwrap();
+    let opts = test_options(cache.path());
     insta::glob!("../experiments", "*.toml", |path| {
-        let out = wavy::runner::run_spec_file(path, &Default::default())
-            .unwrap_or_else(|e| panic!("{}: {e:#}", path.display()));
+        let out =
+            run_spec_file(path, &opts).unwrap_or_else(|e| panic!("{}: {e:#}", path.display()));
         for table in &out.tables {
             let name = if table.name.is_empty() {
                 "csv".to_string()
@@ -23,8 +39,8 @@ fn experiment_outputs() {
 fn outputs_are_byte_identical_across_runs() {
     let spec =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("experiments/fig5_warman_ennos.toml");
-    let a = wavy::runner::run_spec_file(&spec, &Default::default()).unwrap();
-    let b = wavy::runner::run_spec_file(&spec, &Default::default()).unwrap();
+    let a = run_spec_file(&spec, &RunOptions::default()).unwrap();
+    let b = run_spec_file(&spec, &RunOptions::default()).unwrap();
     assert_eq!(a.svg, b.svg);
     assert_eq!(a.tables, b.tables);
 }

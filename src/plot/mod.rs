@@ -7,6 +7,7 @@
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::sync::Once;
 use thiserror::Error;
 
@@ -151,7 +152,7 @@ pub struct Panel {
     pub x_range: (f64, f64),
     pub y_range: (f64, f64),
     pub series: Vec<Series>,
-    /// Lines of text drawn at the top left inside the plotting area.
+    /// Lines of text drawn in the lower right corner inside the plotting area.
     pub notes: Vec<String>,
     pub legend: Option<LegendPosition>,
 }
@@ -325,20 +326,23 @@ fn draw_panel(
             .draw()
             .map_err(err)?;
     }
+    // Notes go in the lower right corner, where the curves (rising from the origin) leave room.
     let plot = chart.plotting_area();
-    let (x0, y0) = (panel.x_range.0, panel.y_range.1);
-    let origin = plot.map_coordinate(&(x0, y0));
+    let (px, py) = plot.get_base_pixel();
+    let corner = plot.map_coordinate(&(panel.x_range.1, panel.y_range.0));
+    let style = (FONT, fs - 1)
+        .into_font()
+        .color(&BLACK)
+        .pos(Pos::new(HPos::Right, VPos::Bottom));
+    let n = panel.notes.len() as i32;
     for (i, note) in panel.notes.iter().enumerate() {
-        let pos = (origin.0 + 8, origin.1 + 6 + i as i32 * (fs as i32 + 2));
+        let line_from_bottom = n - 1 - i as i32;
+        let pos = (
+            corner.0 - 8 - px,
+            corner.1 - 6 - line_from_bottom * (fs as i32 + 3) - py,
+        );
         plot.strip_coord_spec()
-            .draw_text(
-                note,
-                &(FONT, fs - 1).into_font().color(&BLACK),
-                (
-                    pos.0 - plot.get_base_pixel().0,
-                    pos.1 - plot.get_base_pixel().1,
-                ),
-            )
+            .draw_text(note, &style, pos)
             .map_err(err)?;
     }
     Ok(())
