@@ -6,7 +6,8 @@
 //!
 //! - `[correction_surfaces]`: the surfaces A(AR, τ_max), B(AR, τ_max) (paper Fig. 2);
 //! - `[fe_vs_model]`: p̄/E* against a/λ per (AR, τ_max) panel (paper Fig. 3);
-//! - `[fingertip_area]`: total contact area against load for fingerprint ridges (paper Fig. 5, R8).
+//! - `[fingertip_area]`: total contact area against load for fingerprint ridges (paper Fig. 5, R8);
+//! - `[deformed_mesh]`: the deformed FE mesh and its contact pressure at the end of loading.
 //!
 //! This module reads no file: [`Spec::parse`] takes the text and the name to quote in errors.
 
@@ -65,6 +66,17 @@ pub struct Spec {
     pub correction_surfaces: Option<CorrectionSurfacesScene>,
     pub fe_vs_model: Option<FeVsModelScene>,
     pub fingertip_area: Option<FingertipAreaScene>,
+    pub deformed_mesh: Option<DeformedMeshScene>,
+}
+
+/// The deformed finite-element mesh and its contact pressure at the end of loading.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DeformedMeshScene {
+    /// Aspect ratio Δ/λ.
+    pub aspect_ratio: Bounded<Positive>,
+    /// The FE model; `tau_max_mpa` must hold exactly one value.
+    pub fe: FeSection,
 }
 
 /// Tolerances of `wavy check`: a number passes when |new − expected| ≤ abs_tol + rel_tol·|expected|.
@@ -84,6 +96,7 @@ pub enum Scene<'a> {
     CorrectionSurfaces(&'a CorrectionSurfacesScene),
     FeVsModel(&'a FeVsModelScene),
     FingertipArea(&'a FingertipAreaScene),
+    DeformedMesh(&'a DeformedMeshScene),
 }
 
 /// Paper Fig. 2: A and B over an (AR, τ_max) grid.
@@ -368,15 +381,16 @@ impl Spec {
 
     /// The one scene of this spec.
     pub fn scene(&self) -> Scene<'_> {
-        match (
-            &self.correction_surfaces,
-            &self.fe_vs_model,
-            &self.fingertip_area,
-        ) {
-            (Some(s), None, None) => Scene::CorrectionSurfaces(s),
-            (None, Some(s), None) => Scene::FeVsModel(s),
-            (None, None, Some(s)) => Scene::FingertipArea(s),
-            _ => unreachable!("Spec::parse admits exactly one scene table"),
+        if let Some(s) = &self.correction_surfaces {
+            Scene::CorrectionSurfaces(s)
+        } else if let Some(s) = &self.fe_vs_model {
+            Scene::FeVsModel(s)
+        } else if let Some(s) = &self.fingertip_area {
+            Scene::FingertipArea(s)
+        } else if let Some(s) = &self.deformed_mesh {
+            Scene::DeformedMesh(s)
+        } else {
+            unreachable!("Spec::parse admits exactly one scene table")
         }
     }
 
@@ -386,6 +400,7 @@ impl Spec {
             self.correction_surfaces.is_some(),
             self.fe_vs_model.is_some(),
             self.fingertip_area.is_some(),
+            self.deformed_mesh.is_some(),
         ];
         let n = scenes.iter().filter(|&&s| s).count();
         if n != 1 {
@@ -394,7 +409,7 @@ impl Spec {
                 field: "(scene table)".into(),
                 location: Location(None),
                 value: format!("{n} scene tables"),
-                allowed: "exactly one of [correction_surfaces], [fe_vs_model], [fingertip_area]"
+                allowed: "exactly one of [correction_surfaces], [fe_vs_model], [fingertip_area], [deformed_mesh]"
                     .into(),
             });
         }
@@ -432,26 +447,19 @@ impl Spec {
             )?;
             v.models("fe_vs_model.models", &s.models)?;
             if let Some(fe) = &s.fe {
-                v.non_empty("fe_vs_model.fe.tau_max_mpa", fe.tau_max_mpa.len())?;
                 let panels: Vec<f64> = s.tau_max_mpa.iter().map(|t| t.get()).collect();
-                for (i, t) in fe.tau_max_mpa.iter().map(|t| t.get()).enumerate() {
-                    if !panels.contains(&t) {
-                        return Err(v.invalid(
-                            &format!("fe_vs_model.fe.tau_max_mpa[{i}]"),
-                            None,
-                            t.to_string(),
-                            format!("one of the panels' tau_max_mpa {panels:?}"),
-                        ));
-                    }
-                    if t > 0.0 {
-                        return Err(v.invalid(
-                            &format!("fe_vs_model.fe.tau_max_mpa[{i}]"),
-                            None,
-                            t.to_string(),
-                            "0 (the solver is frictionless so far: Coulomb–Orowan friction is not implemented yet)".into(),
-                        ));
-                    }
-                }
+                v.fe_section("fe_vs_model.fe", fe, Some(&panels))?;
+            }
+        }
+        if let Some(s) = &self.deformed_mesh {
+            v.fe_section("deformed_mesh.fe", &s.fe, None)?;
+            if s.fe.tau_max_mpa.len() != 1 {
+                return Err(v.invalid(
+                    "deformed_mesh.fe.tau_max_mpa",
+                    None,
+                    format!("{} values", s.fe.tau_max_mpa.len()),
+                    "exactly one value".into(),
+                ));
             }
         }
         if let Some(s) = &self.fingertip_area {
@@ -552,6 +560,37 @@ impl Validator<'_> {
                 n.to_string(),
                 "[2, 100000]".into(),
             ));
+        }
+        Ok(())
+    }
+
+    /// The τ_max list of an FE section: non-empty, each one of `panels` (when given), and 0
+    /// while the solver has no friction.
+    fn fe_section(
+        &self,
+        field: &str,
+        fe: &FeSection,
+        panels: Option<&[f64]>,
+    ) -> Result<(), SpecError> {
+        let field = format!("{field}.tau_max_mpa");
+        self.non_empty(&field, fe.tau_max_mpa.len())?;
+        for (i, t) in fe.tau_max_mpa.iter().map(|t| t.get()).enumerate() {
+            if let Some(panels) = panels.filter(|p| !p.contains(&t)) {
+                return Err(self.invalid(
+                    &format!("{field}[{i}]"),
+                    None,
+                    t.to_string(),
+                    format!("one of the panels' tau_max_mpa {panels:?}"),
+                ));
+            }
+            if t > 0.0 {
+                return Err(self.invalid(
+                    &format!("{field}[{i}]"),
+                    None,
+                    t.to_string(),
+                    "0 (the solver is frictionless so far: Coulomb–Orowan friction is not implemented yet)".into(),
+                ));
+            }
         }
         Ok(())
     }

@@ -222,6 +222,11 @@ pub fn render_svg(figure: &Figure) -> Result<String, PlotError> {
     Ok(svg)
 }
 
+/// A tick label: at most four significant digits, no trailing zeros, never `-0`.
+fn tick(v: f64) -> String {
+    crate::numfmt::sig_digits(v, 4)
+}
+
 fn draw_panel(
     area: &DrawingArea<SVGBackend<'_>, Shift>,
     panel: &Panel,
@@ -248,6 +253,8 @@ fn draw_panel(
         .bold_line_style(RGBColor(215, 215, 215))
         .x_labels(6)
         .y_labels(6)
+        .x_label_formatter(&|v| tick(*v))
+        .y_label_formatter(&|v| tick(*v))
         .draw()
         .map_err(err)?;
 

@@ -5,6 +5,7 @@
 //! interrupted run never leaves a partial CSV or SVG behind.
 
 mod correction_surfaces;
+mod deformed_mesh;
 pub mod fe_cases;
 mod fe_vs_model;
 mod fingertip_area;
@@ -92,6 +93,7 @@ pub fn run_spec(
     let (tables, figure, notes) = match spec.scene() {
         Scene::CorrectionSurfaces(s) => correction_surfaces::run(&spec.title, s)?,
         Scene::FeVsModel(s) => fe_vs_model::run(&spec.title, s, opts)?,
+        Scene::DeformedMesh(s) => deformed_mesh::run(&spec.title, s, opts)?,
         Scene::FingertipArea(s) => fingertip_area::run(&spec.title, s, spec_dir)?,
     };
     let svg = crate::plot::render_svg(&figure)?;

@@ -1,0 +1,149 @@
+//! The deformed finite-element mesh at the end of loading, with the indenter and the contact
+//! pressure along the contact face: the picture that shows what the solver does at large
+//! aspect ratio (material sliding along the indenter, the valley closing).
+
+use super::fe_cases::FeCase;
+use super::RunOptions;
+use crate::fe;
+use crate::plot::{palette, Figure, LegendPosition, Panel, Series};
+use crate::spec::DeformedMeshScene;
+use crate::table::Table;
+use anyhow::{anyhow, Result};
+
+pub(super) fn run(
+    title: &str,
+    s: &DeformedMeshScene,
+    opts: &RunOptions,
+) -> Result<(Vec<Table>, Figure, Vec<String>)> {
+    let ar = s.aspect_ratio.get();
+    let tau = s.fe.tau_max_mpa[0].get();
+    let mut case = FeCase::from_section(&s.fe, ar, tau);
+    if let Some(mesh) = opts.fe_mesh_override {
+        case.options.mesh = mesh;
+    }
+    let curve = fe::solve_curve(&case.problem, &case.options, &mut |_| {})
+        .map_err(|f| anyhow!("the FE solve for the deformed mesh stopped: {}", f.error))?;
+    let last = *curve
+        .points
+        .last()
+        .ok_or_else(|| anyhow!("the FE solve converged no load step"))?;
+    let state = &curve.final_state;
+
+    let mut table = Table::new(
+        "",
+        &["node", "x_over_lambda", "y_over_lambda", "p_over_estar"],
+    );
+    for (k, &id) in state.bottom.iter().enumerate() {
+        let [x, y] = state.nodes[id];
+        table.push(vec![
+            (id as f64).into(),
+            x.into(),
+            y.into(),
+            state.contact_pressure_over_estar[k].into(),
+        ]);
+    }
+
+    // Panel 1: the mesh (grey), the indenter (black), the nodes in contact (vermilion).
+    let mut mesh_series: Vec<Series> = state
+        .quads
+        .iter()
+        .map(|q| {
+            let mut pts: Vec<(f64, f64)> = q
+                .iter()
+                .map(|&i| (state.nodes[i][0], state.nodes[i][1]))
+                .collect();
+            pts.push(pts[0]);
+            Series::line(None, palette::GREY, 1, pts)
+        })
+        .collect();
+    let indenter = fe::contact::Indenter { amplitude: ar };
+    let surface: Vec<(f64, f64)> = (0..=200)
+        .map(|i| 0.5 * i as f64 / 200.0)
+        .map(|x| (x, indenter.y(x)))
+        .collect();
+    mesh_series.push(Series::line(
+        Some("rigid indenter".into()),
+        palette::BLACK,
+        3,
+        surface,
+    ));
+    let in_contact: Vec<(f64, f64)> = state
+        .bottom
+        .iter()
+        .zip(&state.contact_pressure_over_estar)
+        .filter(|(_, p)| **p > 0.0)
+        .map(|(&i, _)| (state.nodes[i][0], state.nodes[i][1]))
+        .collect();
+    mesh_series.push(Series::markers(
+        Some("nodes in contact".into()),
+        palette::VERMILION,
+        3,
+        in_contact,
+    ));
+    let y_lo = -2.0 * ar - 0.02;
+    let mesh_panel = Panel {
+        title: format!("deformed mesh at a/λ = {:.3}", last.a_over_lambda),
+        x_label: "x/λ".into(),
+        y_label: "y/λ".into(),
+        x_range: (0.0, 0.5),
+        y_range: (y_lo, y_lo + 0.75),
+        series: mesh_series,
+        notes: vec![],
+        legend: Some(LegendPosition::UpperRight),
+    };
+
+    // Panel 2: the contact pressure along the deformed face.
+    let pressure: Vec<(f64, f64)> = state
+        .bottom
+        .iter()
+        .zip(&state.contact_pressure_over_estar)
+        .map(|(&i, &p)| (state.nodes[i][0], p))
+        .collect();
+    let p_max = pressure.iter().map(|p| p.1).fold(0.0_f64, f64::max);
+    let pressure_panel = Panel {
+        title: "contact pressure along the deformed face".into(),
+        x_label: "current x/λ".into(),
+        y_label: "p/E*".into(),
+        x_range: (0.0, 0.5),
+        y_range: (0.0, 1.1 * p_max.max(last.p_over_estar)),
+        series: vec![
+            Series::line(
+                Some("p/E* (nodal)".into()),
+                palette::VERMILION,
+                2,
+                pressure.clone(),
+            ),
+            Series::markers(None, palette::VERMILION, 3, pressure),
+            Series::dashed(
+                Some(format!("mean p̄/E* = {:.4}", last.p_over_estar)),
+                palette::BLACK,
+                1,
+                vec![(0.0, last.p_over_estar), (0.5, last.p_over_estar)],
+            ),
+        ],
+        notes: vec![],
+        legend: Some(LegendPosition::UpperRight),
+    };
+    let (nx, ny) = case.options.mesh.counts();
+    let footer = vec![format!(
+        "AR = {ar}, {:?} kinematics, neo-Hookean κ/G = {}, h/λ = {} (mesh {nx}×{ny}; only y/λ ≤ {:.2} shown). \
+         a/λ = {:.4}, p̄/E* = {:.5} (contact forces) / {:.5} (slab reaction).",
+        case.problem.kinematics,
+        s.fe.kappa_over_g.get(),
+        s.fe.thickness_over_lambda.get(),
+        y_lo + 0.75,
+        last.a_over_lambda,
+        last.p_over_estar,
+        last.p_over_estar_reaction
+    )];
+    let figure = Figure {
+        width: 1400,
+        height: 1080,
+        caption: title.into(),
+        grid: (1, 2),
+        panels: vec![mesh_panel, pressure_panel],
+        footer,
+        font_px: 18,
+    };
+    Ok((vec![table], figure, vec![]))
+}
