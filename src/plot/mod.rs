@@ -56,22 +56,30 @@ pub struct Series {
 }
 
 impl Series {
+    fn new(label: Option<String>, color: RGBColor, style: Style, points: Vec<(f64, f64)>) -> Self {
+        Self {
+            label,
+            color,
+            style,
+            points,
+            upper: vec![],
+        }
+    }
     pub fn line(
         label: Option<String>,
         color: RGBColor,
         width: u32,
         points: Vec<(f64, f64)>,
     ) -> Self {
-        Self {
+        Self::new(
             label,
             color,
-            style: Style::Line {
+            Style::Line {
                 width,
                 dashed: false,
             },
             points,
-            upper: vec![],
-        }
+        )
     }
     pub fn dashed(
         label: Option<String>,
@@ -79,16 +87,15 @@ impl Series {
         width: u32,
         points: Vec<(f64, f64)>,
     ) -> Self {
-        Self {
+        Self::new(
             label,
             color,
-            style: Style::Line {
+            Style::Line {
                 width,
                 dashed: true,
             },
             points,
-            upper: vec![],
-        }
+        )
     }
     pub fn markers(
         label: Option<String>,
@@ -96,16 +103,15 @@ impl Series {
         size: u32,
         points: Vec<(f64, f64)>,
     ) -> Self {
-        Self {
+        Self::new(
             label,
             color,
-            style: Style::Markers {
+            Style::Markers {
                 size,
                 filled: false,
             },
             points,
-            upper: vec![],
-        }
+        )
     }
     pub fn band(
         label: Option<String>,
@@ -114,11 +120,8 @@ impl Series {
         upper: Vec<(f64, f64)>,
     ) -> Self {
         Self {
-            label,
-            color,
-            style: Style::Band,
-            points: lower,
             upper,
+            ..Self::new(label, color, Style::Band, lower)
         }
     }
 }
