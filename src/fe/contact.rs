@@ -1,4 +1,4 @@
-//! Rigid sinusoidal indenter, contact-edge location and the interface law.
+//! Rigid sinusoidal indenter and the interface law.
 //!
 //! Indenter surface (units of λ, amplitude `Δ/λ = AR`):
 //!
@@ -68,60 +68,3 @@ impl Indenter {
     }
 }
 
-/// Rule locating the contact edge between the last contact node and the first free
-/// node.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-pub enum EdgeRule {
-    /// Near a smooth (adhesionless) contact edge the gap grows as `g ∝ (x − a)^{3/2}`.
-    /// Fitting that law through the gaps `g₁, g₂` of the first two free nodes at `x₁, x₂`
-    /// gives `a = (x₁ − r x₂)/(1 − r)`, `r = (g₁/g₂)^{2/3}`, clamped to
-    /// `[x_last_contact, x_first_free]`.
-    #[default]
-    GapPower,
-    /// Near the edge `p ∝ √(a − x)`: extrapolate `p²` linearly in `x` to zero from the
-    /// two contact nodes before the last one (nodal pressure = force / tributary
-    /// length), clamped to `[x_last_contact, x_first_free]`.
-    PressureSquared,
-    /// The current `x` of the last contact node (node-spacing resolution; for
-    /// comparison only).
-    LastNode,
-}
-
-/// Contact half-width from the contact-face data ordered by increasing reference `X`:
-/// current `x`, active flag, gap (≥ 0 on free nodes) and multiplier (active nodes).
-pub fn locate_edge(x: &[f64], active: &[bool], gap: &[f64], force: &[f64], rule: EdgeRule) -> f64 {
-    let n = x.len();
-    let Some(c) = (0..n).rev().find(|&i| active[i]) else {
-        return 0.0;
-    };
-    if c + 1 >= n {
-        return x[n - 1];
-    }
-    let (xc, x1) = (x[c], x[c + 1]);
-    let a = match rule {
-        EdgeRule::LastNode => xc,
-        EdgeRule::GapPower => {
-            if c + 2 < n && !active[c + 2] && gap[c + 1] > 0.0 && gap[c + 2] > gap[c + 1] {
-                let r = (gap[c + 1] / gap[c + 2]).powf(2.0 / 3.0);
-                (x1 - r * x[c + 2]) / (1.0 - r)
-            } else {
-                xc
-            }
-        }
-        EdgeRule::PressureSquared => {
-            if c >= 3 {
-                let p = |i: usize| force[i] / (0.5 * (x[i + 1] - x[i - 1]));
-                let (xa, xb) = (x[c - 2], x[c - 1]);
-                let (qa, qb) = (p(c - 2).powi(2), p(c - 1).powi(2));
-                if qa > qb {
-                    xb + qb * (xb - xa) / (qa - qb)
-                } else {
-                    x1
-                }
-            } else {
-                xc
-            }
-        }
-    };
-    a.clamp(xc, x1)
-}

@@ -46,6 +46,16 @@ pub enum SolveError {
         /// Active-set updates performed.
         iterations: usize,
     },
+    /// The load at which the next contact-face node touches could not be found.
+    #[error("edge search did not converge at load step {step} (node {node}, remaining gap {gap:.3e})")]
+    EdgeSearch {
+        /// Load step.
+        step: usize,
+        /// Contact-face node index (from the peak).
+        node: usize,
+        /// Smallest positive gap reached (units of λ).
+        gap: f64,
+    },
     /// The sparse factorisation failed.
     #[error("sparse solve failed at load step {step}, iteration {iteration}: {message}")]
     LinearSolve {

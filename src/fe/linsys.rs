@@ -9,7 +9,8 @@
 //! extension has a non-symmetric tangent.
 
 use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
+use faer::Side;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::ColMut;
 
@@ -38,6 +39,7 @@ pub struct SparseSystem {
     /// Value position of each diagonal entry.
     pub diag_pos: Vec<usize>,
     symbolic: Option<SymbolicLu<usize>>,
+    symbolic_llt: Option<SymbolicLlt<usize>>,
 }
 
 impl SparseSystem {
@@ -89,6 +91,7 @@ impl SparseSystem {
             elem_pos,
             diag_pos,
             symbolic: None,
+            symbolic_llt: None,
         }
     }
 
@@ -120,6 +123,29 @@ impl SparseSystem {
             }
         }
         y
+    }
+
+    /// Solve `A x = b` in place for a symmetric matrix, by Cholesky if it is positive
+    /// definite, else by LU. Returns whether Cholesky succeeded.
+    pub fn solve_symmetric_in_place(&mut self, b: &mut [f64]) -> Result<bool, LinSolveError> {
+        let sym = SymbolicSparseColMatRef::new_checked(self.n, self.n, &self.col_ptr, None, &self.row_idx);
+        if self.symbolic_llt.is_none() {
+            self.symbolic_llt = Some(
+                SymbolicLlt::try_new(sym, Side::Lower).map_err(|e| LinSolveError::Symbolic(format!("{e:?}")))?,
+            );
+        }
+        let symbolic = self.symbolic_llt.clone().expect("symbolic set above");
+        let mat = SparseColMatRef::new(sym, &self.values);
+        if let Ok(llt) = Llt::try_new_with_symbolic(symbolic, mat, Side::Lower) {
+            let mut x = b.to_vec();
+            llt.solve_in_place(ColMut::from_slice_mut(&mut x));
+            if x.iter().all(|v| v.is_finite()) {
+                b.copy_from_slice(&x);
+                return Ok(true);
+            }
+        }
+        self.solve_in_place(b)?;
+        Ok(false)
     }
 
     /// Solve `A x = b` in place (`b` is overwritten by `x`).

@@ -25,7 +25,7 @@ pub struct Grading {
 impl Default for Grading {
     fn default() -> Self {
         Self {
-            peak_ratio: 3.0,
+            peak_ratio: 2.0,
             first_layer_over_dx: 1.0,
         }
     }

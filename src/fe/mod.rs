@@ -33,7 +33,7 @@ pub mod mesh;
 pub mod model;
 pub mod solver;
 
-pub use contact::{EdgeRule, Interface};
+pub use contact::Interface;
 pub use convergence::{mesh_convergence, p_at, ConvergenceRow, ConvergenceTable};
 pub use error::{CurveFailure, SolveError};
 pub use material::estar_over_g;
@@ -56,12 +56,12 @@ pub enum Kinematics {
 /// Mesh resolution. Each named level doubles the element counts of the previous one.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum MeshLevel {
-    /// 24 × 12 elements.
+    /// 32 × 16 elements.
     Coarse,
-    /// 48 × 24 elements.
+    /// 64 × 32 elements.
     #[default]
     Default,
-    /// 96 × 48 elements.
+    /// 128 × 64 elements.
     Fine,
     /// Explicit counts along the contact face (`nx`) and the thickness (`ny`).
     Elements {
@@ -76,9 +76,9 @@ impl MeshLevel {
     /// Element counts `(nx, ny)`.
     pub fn counts(self) -> (usize, usize) {
         match self {
-            MeshLevel::Coarse => (24, 12),
-            MeshLevel::Default => (48, 24),
-            MeshLevel::Fine => (96, 48),
+            MeshLevel::Coarse => (32, 16),
+            MeshLevel::Default => (64, 32),
+            MeshLevel::Fine => (128, 64),
             MeshLevel::Elements { nx, ny } => (nx, ny),
         }
     }
@@ -120,9 +120,8 @@ pub struct SolveOptions {
     pub mesh: MeshLevel,
     /// Mesh grading.
     pub grading: Grading,
-    /// Contact-edge location rule.
-    pub edge_rule: EdgeRule,
-    /// Target advance of `a/λ` per load step.
+    /// Target advance of `a/λ` per load step (the next edge node is the first one at
+    /// least this far beyond the current edge).
     pub da_target: f64,
     /// First slab-displacement increment in units of the amplitude `Δ`.
     pub first_step_over_amplitude: f64,
@@ -138,6 +137,10 @@ pub struct SolveOptions {
     pub max_newton_iterations: usize,
     /// Maximum line-search halvings.
     pub max_line_search: usize,
+    /// Edge search: relative gap tolerance (w.r.t. the target node's initial gap).
+    pub edge_gap_rtol: f64,
+    /// Edge search: maximum trial loads per step.
+    pub max_edge_iterations: usize,
     /// Maximum active-set updates per load step.
     pub max_active_set_updates: usize,
     /// Relative residual tolerance (w.r.t. the largest nodal force).
@@ -159,7 +162,6 @@ impl Default for SolveOptions {
             until_a_over_lambda: 0.45,
             mesh: MeshLevel::Default,
             grading: Grading::default(),
-            edge_rule: EdgeRule::default(),
             da_target: 0.01,
             first_step_over_amplitude: 0.005,
             max_step_growth: 3.0,
@@ -169,6 +171,8 @@ impl Default for SolveOptions {
             max_newton_iterations: 30,
             max_line_search: 40,
             max_active_set_updates: 40,
+            edge_gap_rtol: 1e-6,
+            max_edge_iterations: 60,
             residual_rtol: 1e-10,
             residual_atol: 1e-13,
             increment_atol: 1e-14,
