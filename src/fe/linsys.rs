@@ -10,9 +10,9 @@
 
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
-use faer::Side;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::ColMut;
+use faer::Side;
 
 /// Failure of the sparse direct solve.
 #[derive(Debug, Clone, thiserror::Error)]
@@ -125,13 +125,65 @@ impl SparseSystem {
         y
     }
 
+    /// Solve `A xⱼ = bⱼ` in place for several right-hand sides of a symmetric matrix
+    /// (one factorisation; Cholesky, falling back to LU).
+    pub fn solve_symmetric_multi(&mut self, rhs: &mut [Vec<f64>]) -> Result<(), LinSolveError> {
+        let sym = SymbolicSparseColMatRef::new_checked(
+            self.n,
+            self.n,
+            &self.col_ptr,
+            None,
+            &self.row_idx,
+        );
+        if self.symbolic_llt.is_none() {
+            self.symbolic_llt = Some(
+                SymbolicLlt::try_new(sym, Side::Lower)
+                    .map_err(|e| LinSolveError::Symbolic(format!("{e:?}")))?,
+            );
+        }
+        let symbolic = self.symbolic_llt.clone().expect("symbolic set above");
+        let mat = SparseColMatRef::new(sym, &self.values);
+        if let Ok(llt) = Llt::try_new_with_symbolic(symbolic, mat, Side::Lower) {
+            let mut out: Vec<Vec<f64>> = rhs.to_vec();
+            for x in out.iter_mut() {
+                llt.solve_in_place(ColMut::from_slice_mut(x));
+            }
+            if out.iter().all(|x| x.iter().all(|v| v.is_finite())) {
+                rhs.clone_from_slice(&out);
+                return Ok(());
+            }
+        }
+        if self.symbolic.is_none() {
+            self.symbolic = Some(
+                SymbolicLu::try_new(sym).map_err(|e| LinSolveError::Symbolic(format!("{e:?}")))?,
+            );
+        }
+        let symbolic = self.symbolic.clone().expect("symbolic set above");
+        let lu = Lu::try_new_with_symbolic(symbolic, mat)
+            .map_err(|e| LinSolveError::Numeric(format!("{e:?}")))?;
+        for x in rhs.iter_mut() {
+            lu.solve_in_place(ColMut::from_slice_mut(x));
+            if x.iter().any(|v| !v.is_finite()) {
+                return Err(LinSolveError::Numeric("non-finite solution".into()));
+            }
+        }
+        Ok(())
+    }
+
     /// Solve `A x = b` in place for a symmetric matrix, by Cholesky if it is positive
     /// definite, else by LU. Returns whether Cholesky succeeded.
     pub fn solve_symmetric_in_place(&mut self, b: &mut [f64]) -> Result<bool, LinSolveError> {
-        let sym = SymbolicSparseColMatRef::new_checked(self.n, self.n, &self.col_ptr, None, &self.row_idx);
+        let sym = SymbolicSparseColMatRef::new_checked(
+            self.n,
+            self.n,
+            &self.col_ptr,
+            None,
+            &self.row_idx,
+        );
         if self.symbolic_llt.is_none() {
             self.symbolic_llt = Some(
-                SymbolicLlt::try_new(sym, Side::Lower).map_err(|e| LinSolveError::Symbolic(format!("{e:?}")))?,
+                SymbolicLlt::try_new(sym, Side::Lower)
+                    .map_err(|e| LinSolveError::Symbolic(format!("{e:?}")))?,
             );
         }
         let symbolic = self.symbolic_llt.clone().expect("symbolic set above");

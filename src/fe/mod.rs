@@ -139,12 +139,17 @@ pub struct SolveOptions {
     pub max_line_search: usize,
     /// Edge search: relative gap tolerance (w.r.t. the target node's initial gap).
     pub edge_gap_rtol: f64,
+    /// Edge search: solve for the event load with the bordered Newton method (`d` as
+    /// an unknown) first, falling back to the secant search if it fails.
+    pub bordered_edge_solve: bool,
     /// Edge search: maximum trial loads per step.
     pub max_edge_iterations: usize,
     /// Maximum active-set updates per load step.
     pub max_active_set_updates: usize,
     /// Relative residual tolerance (w.r.t. the largest nodal force).
     pub residual_rtol: f64,
+    /// Relative residual tolerance of Newton passes whose active set may still change.
+    pub loose_residual_rtol: f64,
     /// Absolute residual tolerance in units of `(G + κ) λ` (the round-off floor of the
     /// nodal forces grows with `κ`).
     pub residual_atol: f64,
@@ -173,7 +178,9 @@ impl Default for SolveOptions {
             max_active_set_updates: 40,
             edge_gap_rtol: 1e-6,
             max_edge_iterations: 60,
+            bordered_edge_solve: true,
             residual_rtol: 1e-10,
+            loose_residual_rtol: 1e-5,
             residual_atol: 1e-13,
             increment_atol: 1e-14,
             multiplier_rtol: 1e-9,

@@ -83,6 +83,7 @@ pub(crate) fn newton(
     model: &mut Model,
     st: &mut State,
     opts: &SolveOptions,
+    rtol: f64,
 ) -> Result<usize, StepFail> {
     let mut last_res = f64::NAN;
     for it in 0..=opts.max_newton_iterations {
@@ -96,7 +97,7 @@ pub(crate) fn newton(
         let scale = f.force_scale;
         last_res = res;
         let atol = opts.residual_atol * (model.mat.g + model.mat.kappa);
-        if res <= opts.residual_rtol * scale + atol {
+        if res <= rtol * scale + atol {
             return Ok(it);
         }
         if it == opts.max_newton_iterations || !res.is_finite() {
@@ -158,6 +159,110 @@ pub(crate) fn newton(
     })
 }
 
+/// Newton iterations for the edge event on node `k` at a fixed active set: the slab
+/// displacement `d` is an extra unknown and the extra equation is the gap of node `k`
+/// (held free), `c(q) = 0`. Bordered solve with one factorisation:
+///
+/// ```text
+/// K z₁ = −r,   K z₂ = −∂r/∂d,   δd = −(c + ∇c·z₁)/(∇c·z₂),   δq = z₁ + z₂ δd
+/// ```
+///
+/// Line search on the merit `‖r‖∞ + |∂r/∂d|∞ |c|` (forces), backtracking also on
+/// inversion.
+pub(crate) fn newton_edge(
+    model: &mut Model,
+    st: &mut State,
+    opts: &SolveOptions,
+    k: usize,
+    gap_tol: f64,
+    rtol: f64,
+) -> Result<usize, StepFail> {
+    let node = model.mesh.bottom[k];
+    let mut last_res = f64::NAN;
+    let mut kscale = 0.0;
+    for it in 0..=opts.max_newton_iterations {
+        let Some(f) = model.assemble(st, true) else {
+            return Err(StepFail::Inverted {
+                iteration: it,
+                residual: last_res,
+            });
+        };
+        let (c, dc) = model.edge_constraint(st, k);
+        let res = inf_norm(&f.resid);
+        if it == 0 {
+            kscale = inf_norm(&f.dresid_dd);
+        }
+        let merit = res + kscale * c.abs();
+        last_res = res;
+        let atol = opts.residual_atol * (model.mat.g + model.mat.kappa);
+        let gtol = if rtol > opts.residual_rtol {
+            100.0 * gap_tol
+        } else {
+            gap_tol
+        };
+        if res <= rtol * f.force_scale + atol && c.abs() <= gtol {
+            return Ok(it);
+        }
+        if it == opts.max_newton_iterations || !merit.is_finite() {
+            break;
+        }
+        let mut rhs = vec![
+            f.resid.iter().map(|r| -r).collect::<Vec<f64>>(),
+            f.dresid_dd.iter().map(|r| -r).collect::<Vec<f64>>(),
+        ];
+        if let Err(e) = model.sys.solve_symmetric_multi(&mut rhs) {
+            return Err(StepFail::Linear {
+                iteration: it,
+                message: e.to_string(),
+            });
+        }
+        let (z1, z2) = (&rhs[0], &rhs[1]);
+        let dcz = |z: &[f64]| dc[0] * z[2 * node] + dc[1] * z[2 * node + 1];
+        let den = dcz(z2);
+        if den.abs() < 1e-300 {
+            return Err(StepFail::Diverged {
+                iteration: it,
+                residual: res,
+                reason: "edge constraint insensitive to the slab displacement".into(),
+            });
+        }
+        let dd = -(c + dcz(z1)) / den;
+        let dq: Vec<f64> = z1.iter().zip(z2).map(|(a, b)| a + b * dd).collect();
+        let mut alpha = 1.0;
+        let mut accepted = None;
+        for _ in 0..opts.max_line_search {
+            let mut trial = st.clone();
+            trial.d += alpha * dd;
+            model.enforce_constraints(&mut trial);
+            let trial = model.updated(&trial, &dq, alpha);
+            if let Some(ft) = model.assemble(&trial, false) {
+                let (ct, _) = model.edge_constraint(&trial, k);
+                let m = inf_norm(&ft.resid) + kscale * ct.abs();
+                if m < (1.0 - 1e-4 * alpha) * merit || model.kin == Kinematics::Linear {
+                    accepted = Some(trial);
+                    break;
+                }
+            }
+            alpha *= 0.5;
+        }
+        match accepted {
+            Some(t) => *st = t,
+            None => {
+                return Err(StepFail::Diverged {
+                    iteration: it,
+                    residual: res,
+                    reason: "edge line search found no acceptable step".into(),
+                })
+            }
+        }
+    }
+    Err(StepFail::Diverged {
+        iteration: opts.max_newton_iterations,
+        residual: last_res,
+        reason: "maximum Newton iterations reached (edge solve)".into(),
+    })
+}
+
 /// Converge one load step: Newton + active-set updates. `exclude` names a contact-face
 /// node that is never activated (the target of the edge search). Returns the total
 /// number of Newton iterations.
@@ -166,10 +271,22 @@ pub(crate) fn equilibrate(
     st: &mut State,
     opts: &SolveOptions,
     exclude: Option<usize>,
+    edge_tol: Option<f64>,
 ) -> Result<usize, StepFail> {
     let mut total = 0;
+    // Passes whose active set may still change are converged loosely
+    // (`loose_residual_rtol`); the pass that confirms the set is converged tightly.
+    let mut loose = true;
     for _ in 0..opts.max_active_set_updates {
-        total += newton(model, st, opts)?;
+        let rtol = if loose {
+            opts.loose_residual_rtol
+        } else {
+            opts.residual_rtol
+        };
+        total += match (edge_tol, exclude) {
+            (Some(tol), Some(k)) => newton_edge(model, st, opts, k, 0.5 * tol, rtol)?,
+            _ => newton(model, st, opts, rtol)?,
+        };
         let f = model.assemble(st, false).ok_or(StepFail::Inverted {
             iteration: total,
             residual: f64::NAN,
@@ -187,11 +304,15 @@ pub(crate) fn equilibrate(
                 }
             } else if gaps[k] < -gap_tol && exclude != Some(k) {
                 st.active[k] = true;
+                model.project_closest(st, k);
                 changed = true;
             }
         }
         if !changed {
-            return Ok(total);
+            if !loose {
+                return Ok(total);
+            }
+            loose = false;
         }
         model.enforce_constraints(st);
     }
@@ -218,8 +339,15 @@ fn edge_position(model: &Model, st: &State, k: usize) -> f64 {
 }
 
 /// Measured quantities of a converged state whose contact edge is node `edge`.
-pub(crate) fn measure(model: &mut Model, st: &State, estar: f64, edge: usize) -> (CurvePoint, Vec<f64>) {
-    let f = model.assemble(st, false).expect("converged state is not inverted");
+pub(crate) fn measure(
+    model: &mut Model,
+    st: &State,
+    estar: f64,
+    edge: usize,
+) -> (CurvePoint, Vec<f64>) {
+    let f = model
+        .assemble(st, false)
+        .expect("converged state is not inverted");
     let lam = model.multipliers(st, &f.grad);
     let half = 0.5;
     let p_tr = lam.iter().sum::<f64>() / half / estar;
@@ -324,7 +452,8 @@ pub(crate) fn trace(
     let mut points: Vec<CurvePoint> = Vec::new();
     let mut step = 1;
     let mut last_lam = vec![0.0; nb];
-    let fail = |error: SolveError, points: Vec<CurvePoint>| Box::new(CurveFailure { error, points });
+    let fail =
+        |error: SolveError, points: Vec<CurvePoint>| Box::new(CurveFailure { error, points });
     while a_cur < opts.until_a_over_lambda {
         if step > opts.max_steps {
             return Err(fail(
@@ -355,7 +484,20 @@ pub(crate) fn trace(
         let mut cuts = 0;
         let mut evals = 0;
         let mut illinois_side = 0i32;
+        let fast = if opts.bordered_edge_solve {
+            predictor(model, &cur, prev.as_ref(), dd_guess).and_then(|mut st| {
+                let it = equilibrate(model, &mut st, opts, Some(k), Some(tol)).ok()?;
+                let g = gap_k(model, &st);
+                (g.abs() <= tol && st.d > cur.d).then_some((st, it))
+            })
+        } else {
+            None
+        };
         let found = loop {
+            if let Some((st, it)) = fast.clone() {
+                iters += it;
+                break st;
+            }
             evals += 1;
             if evals > opts.max_edge_iterations {
                 return Err(fail(
@@ -368,13 +510,16 @@ pub(crate) fn trace(
                 ));
             }
             let base_d = lo.0.d;
-            let attempt = match predictor(model, &lo.0, lo_prev.as_ref().map(|p| &p.0), trial - base_d) {
-                Some(mut st) => equilibrate(model, &mut st, opts, Some(k)).map(|it| (st, it)),
-                None => Err(StepFail::Inverted {
-                    iteration: 0,
-                    residual: f64::NAN,
-                }),
-            };
+            let attempt =
+                match predictor(model, &lo.0, lo_prev.as_ref().map(|p| &p.0), trial - base_d) {
+                    Some(mut st) => {
+                        equilibrate(model, &mut st, opts, Some(k), None).map(|it| (st, it))
+                    }
+                    None => Err(StepFail::Inverted {
+                        iteration: 0,
+                        residual: f64::NAN,
+                    }),
+                };
             match attempt {
                 Err(f) => {
                     cuts += 1;
@@ -427,7 +572,7 @@ pub(crate) fn trace(
         let mut st = found;
         st.active[k] = true;
         model.enforce_constraints(&mut st);
-        match equilibrate(model, &mut st, opts, None) {
+        match equilibrate(model, &mut st, opts, None, None) {
             Ok(it) => iters += it,
             Err(f) => return Err(fail(f.into_error(step, st.d), points)),
         }
