@@ -142,6 +142,8 @@ pub struct SolveOptions {
     /// Edge search: solve for the event load with the bordered Newton method (`d` as
     /// an unknown) first, falling back to the secant search if it fails.
     pub bordered_edge_solve: bool,
+    /// Use the tangent (Euler) predictor (else extrapolate the last increment).
+    pub tangent_predictor: bool,
     /// Edge search: maximum trial loads per step.
     pub max_edge_iterations: usize,
     /// Maximum active-set updates per load step.
@@ -179,6 +181,7 @@ impl Default for SolveOptions {
             edge_gap_rtol: 1e-6,
             max_edge_iterations: 60,
             bordered_edge_solve: true,
+            tangent_predictor: true,
             residual_rtol: 1e-10,
             loose_residual_rtol: 1e-5,
             residual_atol: 1e-13,

@@ -392,9 +392,30 @@ fn deformed_state(model: &Model, st: &State, lam: &[f64], estar: f64) -> Deforme
     }
 }
 
-fn predictor(model: &Model, cur: &State, prev: Option<&State>, dd: f64) -> Option<State> {
+/// Predictor for the load `cur.d + dd`: the tangent (Euler) predictor
+/// `q + dd · ∂q/∂d` with `K ∂q/∂d = −∂r/∂d` at the converged state (its tangent is
+/// positive definite there), else linear extrapolation of the last increment, else a
+/// uniform vertical compression. The first that has no inverted element is used.
+fn predictor(
+    model: &mut Model,
+    cur: &State,
+    prev: Option<&State>,
+    dd: f64,
+    tangent: bool,
+) -> Option<State> {
     let h = model.mesh.thickness;
     let mut tries: Vec<State> = Vec::new();
+    if tangent {
+        if let Some(f) = model.assemble(cur, true) {
+            let mut z: Vec<f64> = f.dresid_dd.iter().map(|v| -v).collect();
+            if model.sys.solve_symmetric_in_place(&mut z).is_ok() {
+                let mut st = cur.clone();
+                st.d = cur.d + dd;
+                model.enforce_constraints(&mut st);
+                tries.push(model.updated(&st, &z, dd));
+            }
+        }
+    }
     if let Some(p) = prev {
         let ddp = cur.d - p.d;
         if ddp > 0.0 {
@@ -421,6 +442,19 @@ fn predictor(model: &Model, cur: &State, prev: Option<&State>, dd: f64) -> Optio
         }
     }
     None
+}
+
+/// Activate the contact-face nodes `from..to` (between the current edge and the target
+/// node; contact is a single interval from the peak) on their closest indenter point,
+/// so that the edge solve does not start with an active-set change.
+fn pre_activate(model: &Model, st: &mut State, from: usize, to: usize) {
+    for k in from..to {
+        if !st.active[k] {
+            st.active[k] = true;
+            model.project_closest(st, k);
+        }
+    }
+    model.enforce_constraints(st);
 }
 
 /// Trace the load curve up to `opts.until_a_over_lambda`.
@@ -470,8 +504,12 @@ pub(crate) fn trace(
             break; // full contact
         }
         let mut k = c + 1;
-        while k + 1 < nb && xs[k] < a_cur + opts.da_target {
+        while k + 2 < nb && xs[k] < a_cur + opts.da_target {
             k += 1;
+        }
+        if k + 1 >= nb {
+            // the next edge node would be the valley node (x = λ/2): full contact
+            break;
         }
         let gap_k = |m: &Model, st: &State| m.gaps(st)[k];
         let g0 = gap_k(model, &cur);
@@ -485,11 +523,14 @@ pub(crate) fn trace(
         let mut evals = 0;
         let mut illinois_side = 0i32;
         let fast = if opts.bordered_edge_solve {
-            predictor(model, &cur, prev.as_ref(), dd_guess).and_then(|mut st| {
-                let it = equilibrate(model, &mut st, opts, Some(k), Some(tol)).ok()?;
-                let g = gap_k(model, &st);
-                (g.abs() <= tol && st.d > cur.d).then_some((st, it))
-            })
+            predictor(model, &cur, prev.as_ref(), dd_guess, opts.tangent_predictor).and_then(
+                |mut st| {
+                    pre_activate(model, &mut st, c + 1, k);
+                    let it = equilibrate(model, &mut st, opts, Some(k), Some(tol)).ok()?;
+                    let g = gap_k(model, &st);
+                    (g.abs() <= tol && st.d > cur.d).then_some((st, it))
+                },
+            )
         } else {
             None
         };
@@ -510,16 +551,22 @@ pub(crate) fn trace(
                 ));
             }
             let base_d = lo.0.d;
-            let attempt =
-                match predictor(model, &lo.0, lo_prev.as_ref().map(|p| &p.0), trial - base_d) {
-                    Some(mut st) => {
-                        equilibrate(model, &mut st, opts, Some(k), None).map(|it| (st, it))
-                    }
-                    None => Err(StepFail::Inverted {
-                        iteration: 0,
-                        residual: f64::NAN,
-                    }),
-                };
+            let attempt = match predictor(
+                model,
+                &lo.0,
+                lo_prev.as_ref().map(|p| &p.0),
+                trial - base_d,
+                opts.tangent_predictor,
+            ) {
+                Some(mut st) => {
+                    pre_activate(model, &mut st, c + 1, k);
+                    equilibrate(model, &mut st, opts, Some(k), None).map(|it| (st, it))
+                }
+                None => Err(StepFail::Inverted {
+                    iteration: 0,
+                    residual: f64::NAN,
+                }),
+            };
             match attempt {
                 Err(f) => {
                     cuts += 1;
@@ -569,6 +616,16 @@ pub(crate) fn trace(
                 }
             }
         };
+        if found.d <= cur.d {
+            return Err(fail(
+                SolveError::EdgeSearch {
+                    step,
+                    node: k,
+                    gap: g0,
+                },
+                points,
+            ));
+        }
         let mut st = found;
         st.active[k] = true;
         model.enforce_constraints(&mut st);
