@@ -34,7 +34,10 @@ pub mod model;
 pub mod solver;
 
 pub use contact::Interface;
-pub use convergence::{mesh_convergence, p_at, ConvergenceRow, ConvergenceTable};
+pub use convergence::{
+    convergence_table, mesh_convergence, mesh_convergence_levels, p_at, ConvergenceRow,
+    ConvergenceTable,
+};
 pub use error::{CurveFailure, SolveError};
 pub use material::estar_over_g;
 pub use mesh::Grading;
@@ -120,8 +123,11 @@ pub struct SolveOptions {
     pub mesh: MeshLevel,
     /// Mesh grading.
     pub grading: Grading,
-    /// Target advance of `a/λ` per load step (the next edge node is the first one at
-    /// least this far beyond the current edge).
+    /// Target advance of `a/λ` per load step: the next edge node is the first one at
+    /// least this far beyond the current edge. The default 0 steps node by node, which
+    /// is the cheapest: skipping nodes makes the skipped ones enter contact in the
+    /// middle of a solve, which costs many more Newton iterations (measured: 26–54
+    /// instead of 4–7 per step at AR = 0.1).
     pub da_target: f64,
     /// First slab-displacement increment in units of the amplitude `Δ`.
     pub first_step_over_amplitude: f64,
@@ -169,7 +175,7 @@ impl Default for SolveOptions {
             until_a_over_lambda: 0.45,
             mesh: MeshLevel::Default,
             grading: Grading::default(),
-            da_target: 0.01,
+            da_target: 0.0,
             first_step_over_amplitude: 0.005,
             max_step_growth: 3.0,
             target_newton_iterations: 8,
@@ -283,7 +289,7 @@ pub fn validate(problem: &LayerProblem, opts: &SolveOptions) -> Result<(), Solve
         opts.until_a_over_lambda > 0.0 && opts.until_a_over_lambda < 0.5,
         "(0, 0.5)",
     )?;
-    check_range("da_target", opts.da_target, opts.da_target > 0.0, "> 0")?;
+    check_range("da_target", opts.da_target, opts.da_target >= 0.0, ">= 0")?;
     let (nx, ny) = opts.mesh.counts();
     check_range("mesh.nx", nx as f64, nx >= 2, ">= 2")?;
     check_range("mesh.ny", ny as f64, ny >= 1, ">= 1")?;

@@ -444,19 +444,6 @@ fn predictor(
     None
 }
 
-/// Activate the contact-face nodes `from..to` (between the current edge and the target
-/// node; contact is a single interval from the peak) on their closest indenter point,
-/// so that the edge solve does not start with an active-set change.
-fn pre_activate(model: &Model, st: &mut State, from: usize, to: usize) {
-    for k in from..to {
-        if !st.active[k] {
-            st.active[k] = true;
-            model.project_closest(st, k);
-        }
-    }
-    model.enforce_constraints(st);
-}
-
 /// Trace the load curve up to `opts.until_a_over_lambda`.
 ///
 /// Curve points are *edge events*: the load `d` at which a chosen contact-face node
@@ -503,8 +490,12 @@ pub(crate) fn trace(
         if c + 1 >= nb {
             break; // full contact
         }
+        // target: the first node at least `da_target` beyond the edge with a clearly
+        // open gap (a node released with a vanishing multiplier sits at gap 0)
+        let gaps_now = model.gaps(&cur);
+        let open_tol = 1e-9 * amp;
         let mut k = c + 1;
-        while k + 2 < nb && xs[k] < a_cur + opts.da_target {
+        while k + 2 < nb && (xs[k] < a_cur + opts.da_target || gaps_now[k] <= open_tol) {
             k += 1;
         }
         if k + 1 >= nb {
@@ -525,7 +516,6 @@ pub(crate) fn trace(
         let fast = if opts.bordered_edge_solve {
             predictor(model, &cur, prev.as_ref(), dd_guess, opts.tangent_predictor).and_then(
                 |mut st| {
-                    pre_activate(model, &mut st, c + 1, k);
                     let it = equilibrate(model, &mut st, opts, Some(k), Some(tol)).ok()?;
                     let g = gap_k(model, &st);
                     (g.abs() <= tol && st.d > cur.d).then_some((st, it))
@@ -558,10 +548,7 @@ pub(crate) fn trace(
                 trial - base_d,
                 opts.tangent_predictor,
             ) {
-                Some(mut st) => {
-                    pre_activate(model, &mut st, c + 1, k);
-                    equilibrate(model, &mut st, opts, Some(k), None).map(|it| (st, it))
-                }
+                Some(mut st) => equilibrate(model, &mut st, opts, Some(k), None).map(|it| (st, it)),
                 None => Err(StepFail::Inverted {
                     iteration: 0,
                     residual: f64::NAN,
