@@ -23,6 +23,9 @@
 //!
 //! The solver does no I/O.
 
+// Index loops mirror the tensor index notation of the documented formulas.
+#![allow(clippy::needless_range_loop)]
+
 pub mod contact;
 pub mod convergence;
 pub mod element;
