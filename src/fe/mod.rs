@@ -14,10 +14,12 @@
 //! * [`material`], [`element`]: compressible neo-Hookean, mean-dilatation Q1/P0 energy
 //!   (locking-free for `κ/G` from 10 to 10⁴);
 //! * [`contact`]: exact contact by nonlinear elimination on the analytic surface in the
-//!   current configuration, active-set updates, contact-edge location;
+//!   current configuration, active-set updates;
 //! * [`model`]: boundary conditions and assembly of the reduced residual/tangent;
-//! * [`solver`]: Newton with line search, adaptive displacement-controlled stepping
-//!   with step cutting; [`linsys`]: sparse LU through faer;
+//! * [`solver`]: Newton with line search, displacement-controlled stepping from one
+//!   contact-edge event to the next (the load at which the next contact-face node
+//!   touches, found by a bordered Newton solve with `d` as unknown, secant fallback),
+//!   step cutting, contact-edge location; [`linsys`]: sparse Cholesky/LU through faer;
 //! * [`convergence`]: interpolation of curves at fixed `a/λ` and the mesh-convergence
 //!   (Richardson) table.
 //!
@@ -134,10 +136,9 @@ pub struct SolveOptions {
     pub da_target: f64,
     /// First slab-displacement increment in units of the amplitude `Δ`.
     pub first_step_over_amplitude: f64,
-    /// Largest growth factor of the displacement increment between steps.
+    /// Largest growth factor of the trial displacement increment in the secant
+    /// fallback of the edge search.
     pub max_step_growth: f64,
-    /// Steps needing more Newton iterations than this do not grow the increment.
-    pub target_newton_iterations: usize,
     /// Maximum consecutive halvings of a failing step.
     pub max_step_cuts: usize,
     /// Maximum number of load steps.
@@ -181,7 +182,6 @@ impl Default for SolveOptions {
             da_target: 0.0,
             first_step_over_amplitude: 0.005,
             max_step_growth: 3.0,
-            target_newton_iterations: 8,
             max_step_cuts: 12,
             max_steps: 2000,
             max_newton_iterations: 30,

@@ -1,8 +1,8 @@
 //! Newton's method with line search, the contact active-set loop and adaptive load
 //! stepping with step cutting.
 //!
-//! * Newton: consistent tangent of the reduced problem, sparse LU (symbolic
-//!   factorisation reused), backtracking line search on the energy `Π` (Armijo,
+//! * Newton: consistent tangent of the reduced problem, sparse Cholesky (LU if the
+//!   tangent is not positive definite; symbolic factorisations reused), backtracking line search on the energy `Π` (Armijo,
 //!   `c = 10⁻⁴`); if the Newton direction is not a descent direction the residual norm
 //!   is used instead. Inverted trial configurations (`J ≤ 0`) have `Π = +∞` and are
 //!   backtracked. Convergence: `‖r‖∞ ≤ rtol · f_e + atol`, `f_e` the largest
@@ -10,12 +10,16 @@
 //!   `atol = residual_atol · (G + κ) λ`; an iteration whose correction is below
 //!   `increment_atol` (round-off of the positions) also ends the iteration.
 //! * Active set: after each converged Newton solve, release nodes with `λ < 0`,
-//!   activate penetrating nodes, repeat (see [`super::contact`]).
+//!   activate penetrating nodes (moved to their closest point on the indenter),
+//!   repeat (see [`super::contact`]). Passes whose active set may still change are
+//!   converged loosely, the confirming pass tightly.
 //! * Load stepping in the slab displacement `d`, from one edge event to the next (see
-//!   [`trace`]); the target node is chosen so that `a` advances by about `da_target`
-//!   per step. A failed trial load (Newton divergence, inversion, active-set cycling)
-//!   is retried from the last converged state with half the increment, up to
-//!   `max_step_cuts` times. The predictor extrapolates the last converged increment.
+//!   [`trace`]). Each event is first solved by the bordered Newton method
+//!   ([`newton_edge`], `d` an unknown); if that fails, a secant/regula-falsi search on
+//!   `d` with ordinary Newton solves takes over, and a failed trial load (Newton
+//!   divergence, inversion, active-set cycling) is retried from the last converged
+//!   state with half the increment, up to `max_step_cuts` times. Predictor: tangent
+//!   (Euler) step from the last converged state.
 
 use super::error::{CurveFailure, SolveError};
 use super::model::{Model, State};
