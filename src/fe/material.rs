@@ -71,8 +71,7 @@ impl NeoHooke {
         }
         let i1 =
             f[0][0] * f[0][0] + f[0][1] * f[0][1] + f[1][0] * f[1][0] + f[1][1] * f[1][1] + 1.0;
-        let c = j.cbrt();
-        Some(0.5 * self.g * (i1 / (c * c) - 3.0))
+        Some(0.5 * self.g * (j.powf(-2.0 / 3.0) * i1 - 3.0))
     }
 
     /// Isochoric energy density, stress and (optionally filled) tangent; `None` when
@@ -84,8 +83,7 @@ impl NeoHooke {
         }
         let i1 =
             f[0][0] * f[0][0] + f[0][1] * f[0][1] + f[1][0] * f[1][0] + f[1][1] * f[1][1] + 1.0;
-        let c = j.cbrt();
-        let a = 1.0 / (c * c); // J^(−2/3)
+        let a = j.powf(-2.0 / 3.0);
         let inv_j = 1.0 / j;
         // F⁻ᵀ = cof(F)/J
         let fit = [
