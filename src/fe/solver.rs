@@ -463,9 +463,9 @@ fn predictor(
 /// located inside that interval from the gaps `g₁, g₂` of the next two free nodes at
 /// `x₁, x₂`, using the smooth-edge asymptote `g ∝ (x − a)^{3/2}`:
 /// `a = (x₁ − r x₂)/(1 − r)`, `r = (g₁/g₂)^{2/3}`, clamped to `[x_{k−1}, x_k]`
-/// (midpoint if the fit is unavailable). Measured at AR = 0.01, linear kinematics,
-/// 64×32 mesh, against Westergaard at a/λ ≈ 0.1: `a = x_k` errs by −5 %, the midpoint
-/// by +2 %, the gap fit by −0.4 %.
+/// (midpoint if the fit is unavailable). Measured against Westergaard at AR = 0.01,
+/// linear kinematics, a/λ ≈ 0.11: `a = x_k` errs by −5 % and the midpoint by +2 %
+/// (48×24 mesh), the gap fit by −0.4 % (64×32 mesh).
 pub(crate) fn trace(
     model: &mut Model,
     opts: &SolveOptions,
