@@ -2,11 +2,12 @@
 //!
 //! Every node owns two equation slots (`2i`, `2i+1`) whatever its constraint status;
 //! constrained slots get an identity row/column. The sparsity pattern therefore never
-//! changes during a solve, so the symbolic LU factorisation (fill-reducing ordering,
-//! elimination structure) is computed once and reused for every numeric
-//! factorisation. LU rather than Cholesky is used because the reduced Hessian is not
-//! guaranteed positive definite far from equilibrium and because the frictional
-//! extension has a non-symmetric tangent.
+//! changes during a solve, so the symbolic factorisations (fill-reducing ordering,
+//! elimination structure) are computed once and reused for every numeric
+//! factorisation. The frictionless tangent is symmetric: it is factored by supernodal
+//! Cholesky, and by LU when Cholesky fails (the reduced Hessian need not be positive
+//! definite far from equilibrium). LU also serves the non-symmetric frictional tangent
+//! of the planned extension.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::Solve;
