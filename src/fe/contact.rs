@@ -67,4 +67,3 @@ impl Indenter {
         -self.amplitude * t * t * (t * x).cos()
     }
 }
-

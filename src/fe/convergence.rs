@@ -112,8 +112,24 @@ pub fn mesh_convergence(
     opts: &SolveOptions,
     a_values: &[f64],
 ) -> Result<ConvergenceTable, Box<CurveFailure>> {
+    mesh_convergence_levels(
+        problem,
+        opts,
+        [MeshLevel::Coarse, MeshLevel::Default, MeshLevel::Fine],
+        a_values,
+    )
+}
+
+/// As [`mesh_convergence`] on three given meshes (each twice as fine as the previous;
+/// the middle one plays the role of the "default" mesh in the table).
+pub fn mesh_convergence_levels(
+    problem: &LayerProblem,
+    opts: &SolveOptions,
+    levels: [MeshLevel; 3],
+    a_values: &[f64],
+) -> Result<ConvergenceTable, Box<CurveFailure>> {
     let mut curves = Vec::new();
-    for level in [MeshLevel::Coarse, MeshLevel::Default, MeshLevel::Fine] {
+    for level in levels {
         let o = SolveOptions {
             mesh: level,
             ..*opts

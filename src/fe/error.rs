@@ -47,7 +47,9 @@ pub enum SolveError {
         iterations: usize,
     },
     /// The load at which the next contact-face node touches could not be found.
-    #[error("edge search did not converge at load step {step} (node {node}, remaining gap {gap:.3e})")]
+    #[error(
+        "edge search did not converge at load step {step} (node {node}, remaining gap {gap:.3e})"
+    )]
     EdgeSearch {
         /// Load step.
         step: usize,

@@ -54,6 +54,9 @@ pub struct Forces {
     pub grad: Vec<f64>,
     /// Reduced residual per slot (0 on constrained slots).
     pub resid: Vec<f64>,
+    /// Derivative of the reduced residual with respect to the slab displacement `d`
+    /// (filled only when the matrix is assembled): `−Σ_top c_sᵀ H[·, y_top]`.
+    pub dresid_dd: Vec<f64>,
     /// Largest element-level nodal force component (the round-off scale of the
     /// assembled residual).
     pub force_scale: f64,
@@ -280,6 +283,7 @@ impl Model {
         let mut grad = vec![0.0; 2 * nn];
         let mut energy = 0.0;
         let mut force_scale = 0.0_f64;
+        let mut dresid_dd = vec![0.0; if with_matrix { 2 * nn } else { 0 }];
         if with_matrix {
             self.sys.clear();
         }
@@ -302,6 +306,19 @@ impl Model {
                 grad[2 * q[a] + 1] += g[2 * a + 1];
             }
             if with_matrix {
+                for b in 0..4 {
+                    if self.role[q[b]] != Role::Top {
+                        continue;
+                    }
+                    for a in 0..4 {
+                        for s in 0..2 {
+                            if let Some(ca) = map[q[a]][s] {
+                                dresid_dd[2 * q[a] + s] -= ca[0] * hess[2 * a][2 * b + 1]
+                                    + ca[1] * hess[2 * a + 1][2 * b + 1];
+                            }
+                        }
+                    }
+                }
                 let pos = &self.sys.elem_pos[e];
                 for a in 0..4 {
                     for s in 0..2 {
@@ -351,6 +368,7 @@ impl Model {
             energy,
             grad,
             resid,
+            dresid_dd,
             force_scale,
         })
     }
@@ -369,6 +387,54 @@ impl Model {
         }
         self.enforce_constraints(&mut st);
         st
+    }
+
+    /// Move contact-face node `k` (about to be activated) to the closest point of the
+    /// indenter (finite kinematics; a few Newton steps on
+    /// `(x − x₀) + (y_s(x) − y₀) y_s'(x) = 0`). A vertical projection would distort the
+    /// adjacent elements strongly where the indenter is steep.
+    pub fn project_closest(&self, st: &mut State, k: usize) {
+        if self.kin != Kinematics::Finite {
+            return;
+        }
+        let n = self.mesh.bottom[k];
+        if self.role[n] == Role::BottomCorner {
+            return;
+        }
+        let [x0, y0] = st.x[n];
+        let mut x = x0;
+        for _ in 0..20 {
+            let (ys, s, c) = (
+                self.indenter.y(x),
+                self.indenter.slope(x),
+                self.indenter.curvature(x),
+            );
+            let f = (x - x0) + (ys - y0) * s;
+            let df = 1.0 + s * s + (ys - y0) * c;
+            if df <= 0.0 {
+                break;
+            }
+            let dx = f / df;
+            x -= dx;
+            if dx.abs() < 1e-15 {
+                break;
+            }
+        }
+        if x.is_finite() {
+            st.x[n][0] = x.clamp(0.0, 0.5);
+        }
+    }
+
+    /// Edge constraint on contact-face node `k` (held free): its gap `c = y − y_s(x)`
+    /// (at the reference `X` for linear kinematics) and `∂c/∂(x, y)`.
+    pub fn edge_constraint(&self, st: &State, k: usize) -> (f64, [f64; 2]) {
+        let n = self.mesh.bottom[k];
+        let c = st.x[n][1] - self.surface_y(st, n);
+        let dc = match self.kin {
+            Kinematics::Finite => [-self.indenter.slope(st.x[n][0]), 1.0],
+            Kinematics::Linear => [0.0, 1.0],
+        };
+        (c, dc)
     }
 
     /// Multipliers `λ_i = ∂Π/∂y_i` of the contact-face nodes (0 on free nodes).

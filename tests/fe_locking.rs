@@ -1,0 +1,53 @@
+//! Locking test: the mean-dilatation element must not stiffen as κ/G → 10⁴.
+//! Reference: Westergaard `p̄/E* = π (Δ/λ) sin²(π a/λ)` is independent of ν once
+//! scaled by `E*`, so the linear curves for κ/G = 10 (ν ≈ 0.452) and κ/G = 10⁴
+//! (ν ≈ 0.49995) must both match it; a locking element would be far too stiff at 10⁴.
+use std::f64::consts::PI;
+use wavy::fe::*;
+
+fn curve(kappa_over_g: f64, kin: Kinematics, ar: f64, mesh: MeshLevel) -> Curve {
+    let pb = LayerProblem {
+        aspect_ratio: ar,
+        kappa_over_g,
+        kinematics: kin,
+        ..Default::default()
+    };
+    let opts = SolveOptions {
+        mesh,
+        ..Default::default()
+    };
+    solve_curve(&pb, &opts, &mut |_| {}).expect("curve")
+}
+
+#[test]
+fn linear_curve_does_not_lock_from_kappa_10_to_10000() {
+    let ar = 0.01;
+    for kappa in [10.0, 1e4] {
+        let c = curve(kappa, Kinematics::Linear, ar, MeshLevel::Default);
+        for p in c
+            .points
+            .iter()
+            .filter(|p| (0.1..=0.45).contains(&p.a_over_lambda))
+        {
+            let w = PI * ar * (PI * p.a_over_lambda).sin().powi(2);
+            let e = (p.p_over_estar / w - 1.0).abs();
+            assert!(
+                e <= 0.01,
+                "kappa/G {kappa}: a {} error {e}",
+                p.a_over_lambda
+            );
+        }
+    }
+}
+
+/// Finite kinematics, AR = 0.1, coarse mesh: κ/G = 10³ and 10⁴ (both nearly
+/// incompressible) must give the same curve within 0.5 %.
+#[test]
+fn finite_curve_is_insensitive_to_kappa_near_incompressibility() {
+    let a = curve(1e3, Kinematics::Finite, 0.1, MeshLevel::Coarse);
+    let b = curve(1e4, Kinematics::Finite, 0.1, MeshLevel::Coarse);
+    for x in [0.1, 0.2, 0.3, 0.4] {
+        let (pa, pb) = (a.p_at(x).unwrap(), b.p_at(x).unwrap());
+        assert!((pa / pb - 1.0).abs() <= 0.005, "a {x}: {pa} vs {pb}");
+    }
+}

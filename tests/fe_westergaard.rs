@@ -1,0 +1,40 @@
+//! Linear kinematics vs Westergaard's half-space solution
+//! `p̄/E* = π (Δ/λ) sin²(π a/λ)` (K. L. Johnson, Contact Mechanics, 1985, §13.2; the
+//! layer of thickness λ bonded to a rigid slab differs from the half-space by
+//! `O(e^{−4π}) ≈ 4·10⁻⁶` for the first harmonic).
+use std::f64::consts::PI;
+use wavy::fe::*;
+
+fn westergaard(ar: f64, a: f64) -> f64 {
+    PI * ar * (PI * a).sin().powi(2)
+}
+
+fn max_error(kappa_over_g: f64) -> (f64, usize) {
+    let ar = 0.01;
+    let pb = LayerProblem {
+        aspect_ratio: ar,
+        kappa_over_g,
+        kinematics: Kinematics::Linear,
+        ..Default::default()
+    };
+    let curve = solve_curve(&pb, &SolveOptions::default(), &mut |_| {}).expect("linear curve");
+    let mut worst = 0.0_f64;
+    let mut count = 0;
+    for p in curve
+        .points
+        .iter()
+        .filter(|p| (0.1..=0.45).contains(&p.a_over_lambda))
+    {
+        worst = worst.max((p.p_over_estar / westergaard(ar, p.a_over_lambda) - 1.0).abs());
+        count += 1;
+    }
+    (worst, count)
+}
+
+/// Requirement (i): max relative error ≤ 1 % on a/λ ∈ [0.1, 0.45], default mesh.
+#[test]
+fn linear_matches_westergaard_within_one_percent() {
+    let (worst, count) = max_error(1000.0);
+    assert!(count >= 20, "only {count} points in range");
+    assert!(worst <= 0.01, "max relative error {worst}");
+}
