@@ -1,10 +1,9 @@
 //! Pins every experiment's numbers and figure: one snapshot per spec for each CSV table (numbers
 //! through the shared six-significant-digit formatter, `wavy::numfmt`) and one for its SVG.
-//! Finite-element sections run on the coarse mesh here (fast enough for CI) and with a fresh
+//! Finite-element sections run at the spec's mesh (the coarse mesh fails at AR = 0.3) and with a fresh
 //! cache, so the snapshots pin the solver itself, not a cache. A snapshot only says "did our
 //! output change?"; review changes with `cargo insta review`.
 
-use wavy::fe::MeshLevel;
 use wavy::runner::{run_spec_file, RunOptions};
 
 fn test_options(cache: &std::path::Path) -> RunOptions {
