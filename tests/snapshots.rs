@@ -8,7 +8,7 @@ use wavy::runner::{run_spec_file, RunOptions};
 
 fn test_options(cache: &std::path::Path) -> RunOptions {
     let mut opts = RunOptions {
-        fe_mesh_override: Some(MeshLevel::Coarse),
+        fe_mesh_override: None,
         ..RunOptions::default()
     };
     opts.sweep.cache_dir = cache.to_path_buf();
