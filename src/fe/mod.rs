@@ -111,8 +111,8 @@ impl Default for LayerProblem {
     fn default() -> Self {
         Self {
             aspect_ratio: 0.1,
-            thickness_over_lambda: 1.0,
-            kappa_over_g: 1000.0,
+            thickness_over_lambda: crate::defaults::thickness_over_lambda(),
+            kappa_over_g: crate::defaults::kappa_over_g(),
             kinematics: Kinematics::Finite,
             interface: Interface::Frictionless,
         }
