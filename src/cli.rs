@@ -226,6 +226,9 @@ pub struct SolveArgs {
     /// Interfacial shear strength τ_max in MPa (≥ 0; 0 = frictionless).
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub tau_max_mpa: f64,
+    /// Friction coefficient μ of the Coulomb–Orowan law (≥ 0; R7 default 1; 0 = frictionless).
+    #[arg(long, default_value_t = crate::defaults::friction_coefficient(), allow_negative_numbers = true)]
+    pub mu: f64,
     /// Plane-strain modulus E* in MPa (> 0): τ_max/E* is what the physics sees (R7 default 1).
     #[arg(long, default_value_t = crate::defaults::fe_estar_mpa(), allow_negative_numbers = true)]
     pub estar_mpa: f64,
@@ -264,12 +267,8 @@ pub fn solve_setup(
     if !(args.tau_max_mpa.is_finite() && args.tau_max_mpa >= 0.0) {
         return Err(input_error("--tau-max-mpa", args.tau_max_mpa, ">= 0"));
     }
-    if args.tau_max_mpa > 0.0 {
-        return Err(input_error(
-            "--tau-max-mpa",
-            args.tau_max_mpa,
-            "0 (the solver is frictionless so far: Coulomb–Orowan friction is not implemented yet)",
-        ));
+    if !(args.mu.is_finite() && args.mu >= 0.0) {
+        return Err(input_error("--mu", args.mu, ">= 0"));
     }
     let x = args.until_a_over_lambda;
     if !(x.is_finite() && x > 0.0 && x < 0.5) {
@@ -283,7 +282,11 @@ pub fn solve_setup(
             KinematicsArg::Finite => Kinematics::Finite,
             KinematicsArg::Linear => Kinematics::Linear,
         },
-        interface: Interface::Frictionless,
+        interface: Interface::coulomb_orowan(
+            args.mu,
+            args.tau_max_mpa / args.estar_mpa,
+            crate::defaults::elastic_slip_over_element(),
+        ),
     };
     let opts = SolveOptions {
         until_a_over_lambda: x,

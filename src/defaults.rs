@@ -25,3 +25,10 @@ pub fn fe_estar_mpa() -> f64 {
 pub fn friction_coefficient() -> f64 {
     1.0
 }
+
+/// Elastic slip at which the friction threshold is fully mobilised, over the mean element
+/// length along the contact face: 0.005, Abaqus's default for penalty friction (the paper's
+/// FE uses "penalty-based Coulomb–Orowan friction" and states no value; R6).
+pub fn elastic_slip_over_element() -> f64 {
+    0.005
+}

@@ -151,6 +151,10 @@ pub struct FeSection {
     /// Friction coefficient μ of the Coulomb–Orowan law (R7 default 1).
     #[serde(default = "default_friction_coefficient")]
     pub friction_coefficient: Bounded<NonNegative>,
+    /// Penalty regularisation of stick: elastic slip at the friction threshold over the mean
+    /// element length along the contact face (default 0.005, Abaqus's).
+    #[serde(default = "default_elastic_slip_over_element")]
+    pub elastic_slip_over_element: Bounded<Positive>,
     /// `finite` (the paper's physics) or `linear` (small strain).
     #[serde(default)]
     pub kinematics: KinematicsName,
@@ -194,6 +198,9 @@ fn default_kappa_over_g() -> Bounded<Positive> {
 }
 fn default_friction_coefficient() -> Bounded<NonNegative> {
     Bounded::trusted(defaults::friction_coefficient())
+}
+fn default_elastic_slip_over_element() -> Bounded<Positive> {
+    Bounded::trusted(defaults::elastic_slip_over_element())
 }
 fn default_mesh() -> MeshName {
     MeshName(crate::fe::MeshLevel::Default)
@@ -564,8 +571,7 @@ impl Validator<'_> {
         Ok(())
     }
 
-    /// The τ_max list of an FE section: non-empty, each one of `panels` (when given), and 0
-    /// while the solver has no friction.
+    /// The τ_max list of an FE section: non-empty, and each one of `panels` (when given).
     fn fe_section(
         &self,
         field: &str,
@@ -581,14 +587,6 @@ impl Validator<'_> {
                     None,
                     t.to_string(),
                     format!("one of the panels' tau_max_mpa {panels:?}"),
-                ));
-            }
-            if t > 0.0 {
-                return Err(self.invalid(
-                    &format!("{field}[{i}]"),
-                    None,
-                    t.to_string(),
-                    "0 (the solver is frictionless so far: Coulomb–Orowan friction is not implemented yet)".into(),
                 ));
             }
         }

@@ -142,3 +142,115 @@ fn global_tangent_with_contact_elimination_matches_central_differences() {
         }
     }
 }
+
+/// Friction rows (regularised Coulomb–Orowan, `src/fe/contact.rs`): the non-symmetric
+/// tangent against central differences of the reduced residual, with nodes in stick and
+/// in slip, in the Coulomb regime (`τ_max` large) and in the Orowan regime (`μ` large),
+/// finite and linear kinematics. The history is placed so that no node is within the
+/// difference step of a stick/slip or regime switch.
+#[test]
+fn friction_tangent_matches_central_differences() {
+    let regimes = [("coulomb", 0.4, 50.0), ("orowan", 50.0, 0.05)];
+    for kin in [Kinematics::Finite, Kinematics::Linear] {
+        for (name, mu, tau) in regimes {
+            let pb = LayerProblem {
+                aspect_ratio: 0.2,
+                kappa_over_g: 50.0,
+                kinematics: kin,
+                interface: Interface::coulomb_orowan(mu, tau, 0.005),
+                ..Default::default()
+            };
+            let frictionless = LayerProblem {
+                interface: Interface::Frictionless,
+                ..pb
+            };
+            let opts = SolveOptions {
+                mesh: MeshLevel::Elements { nx: 5, ny: 3 },
+                ..Default::default()
+            };
+            let mut m = build_model(&pb, &opts);
+            let mut m0 = build_model(&frictionless, &opts);
+            let mut st = m.initial_state();
+            st.d = 0.06;
+            // conform to the indenter and compress the layer (compressive contact forces)
+            for (i, x) in st.x.iter_mut().enumerate() {
+                let r = m.mesh.nodes[i];
+                let ys = -0.2 * (1.0 - (std::f64::consts::TAU * r[0]).cos());
+                x[0] += 0.01 * (3.0 * r[0]).sin() * (1.0 + r[1]);
+                x[1] += (1.0 - r[1]) * (ys - 0.05) - 0.06 * r[1]
+                    + 0.002 * (5.0 * r[0] + 1.0).cos() * (1.0 - r[1]);
+            }
+            for k in 0..4 {
+                st.active[k] = true;
+            }
+            m.enforce_constraints(&mut st);
+            let e_c = m.elastic_slip_limit().expect("friction is built");
+            assert!(m0.elastic_slip_limit().is_none());
+            // node 1 sticks (|e*| = 0.4 e_c), nodes 2 and 3 slip in opposite directions
+            let offsets = [0.0, 0.4 * e_c, 3.0 * e_c, -5.0 * e_c];
+            for k in 1..4 {
+                let n = m.mesh.bottom[k];
+                st.slip[k].elastic = 0.0;
+                st.slip[k].anchor_x = st.x[n][0] - offsets[k];
+            }
+            let f = m.assemble(&st, true).expect("valid state");
+            let f0 = m0.assemble(&st, false).expect("valid state");
+            // every sliding node is pressed and in the intended regime
+            let normal = m.normal_forces(&st, &f.grad);
+            let limit = m.friction_thresholds(&st, &f.grad);
+            for k in 1..4 {
+                assert!(normal[k] > 0.0, "{kin:?} {name}: node {k} N = {}", normal[k]);
+                let coulomb = limit[k] == mu * normal[k];
+                assert_eq!(coulomb, name == "coulomb", "{kin:?} {name}: node {k}");
+            }
+            for k in 1..4 {
+                let n = m.mesh.bottom[k];
+                assert!(
+                    (f.resid[2 * n] - f0.resid[2 * n]).abs() > 1e-3 * f0.force_scale,
+                    "{kin:?} {name}: node {k} carries no friction force"
+                );
+            }
+            let n = 2 * m.num_nodes();
+            let kmax = (0..n).map(|i| m.sys.get(i, i).abs()).fold(0.0, f64::max);
+            let h = 1e-7;
+            for c in 0..n {
+                if f.resid[c] == 0.0 && m.sys.get(c, c) == 1.0 {
+                    continue; // constrained slot
+                }
+                let mut e = vec![0.0; n];
+                e[c] = 1.0;
+                let fp = m.assemble(&m.updated(&st, &e, h), false).unwrap();
+                let fm = m.assemble(&m.updated(&st, &e, -h), false).unwrap();
+                for r in 0..n {
+                    if m.sys.get(r, r) == 1.0 && f.resid[r] == 0.0 {
+                        continue;
+                    }
+                    let fd = (fp.resid[r] - fm.resid[r]) / (2.0 * h);
+                    let k = m.sys.get(r, c);
+                    assert!(
+                        (fd - k).abs() <= 1e-6 * kmax,
+                        "{kin:?} {name}: K[{r}][{c}] fd {fd} vs {k}"
+                    );
+                }
+            }
+            // derivative with respect to the slab displacement
+            let shift = |dd: f64| {
+                let mut s = st.clone();
+                s.d += dd;
+                m.enforce_constraints(&mut s);
+                s
+            };
+            let (sp, sm) = (shift(h), shift(-h));
+            let fp = m.assemble(&sp, false).unwrap();
+            let fm = m.assemble(&sm, false).unwrap();
+            for r in 0..n {
+                let fd = (fp.resid[r] - fm.resid[r]) / (2.0 * h);
+                assert!(
+                    (fd - f.dresid_dd[r]).abs() <= 1e-6 * kmax,
+                    "{kin:?} {name}: dr/dd[{r}] fd {fd} vs {}",
+                    f.dresid_dd[r]
+                );
+            }
+        }
+    }
+}

@@ -123,6 +123,12 @@ impl SparseSystem {
         }
     }
 
+    /// Value position of entry `(r, c)`, if it is in the pattern.
+    pub fn position(&self, r: usize, c: usize) -> Option<usize> {
+        let s = &self.row_idx[self.col_ptr[c]..self.col_ptr[c + 1]];
+        s.binary_search(&r).ok().map(|k| self.col_ptr[c] + k)
+    }
+
     /// `y = A x`.
     pub fn mul(&self, x: &[f64]) -> Vec<f64> {
         let mut y = vec![0.0; self.n];
@@ -192,10 +198,14 @@ impl SparseSystem {
         }
     }
 
-    /// Solve `A xⱼ = bⱼ` in place for several right-hand sides of a symmetric matrix
-    /// (one factorisation; Cholesky, falling back to LU).
-    pub fn solve_symmetric_multi(&mut self, rhs: &mut [Vec<f64>]) -> Result<(), LinSolveError> {
-        if self.llt_solve(rhs)? {
+    /// Solve `A xⱼ = bⱼ` in place for several right-hand sides with one factorisation:
+    /// Cholesky first if `symmetric` (falling back to LU), LU otherwise.
+    pub fn solve_multi(
+        &mut self,
+        rhs: &mut [Vec<f64>],
+        symmetric: bool,
+    ) -> Result<(), LinSolveError> {
+        if symmetric && self.llt_solve(rhs)? {
             return Ok(());
         }
         let sym = SymbolicSparseColMatRef::new_checked(
@@ -219,44 +229,6 @@ impl SparseSystem {
             if x.iter().any(|v| !v.is_finite()) {
                 return Err(LinSolveError::Numeric("non-finite solution".into()));
             }
-        }
-        Ok(())
-    }
-
-    /// Solve `A x = b` in place for a symmetric matrix, by Cholesky if it is positive
-    /// definite, else by LU. Returns whether Cholesky succeeded.
-    pub fn solve_symmetric_in_place(&mut self, b: &mut [f64]) -> Result<bool, LinSolveError> {
-        let mut rhs = vec![b.to_vec()];
-        let ok = self.llt_solve(&mut rhs)?;
-        if ok {
-            b.copy_from_slice(&rhs[0]);
-            return Ok(true);
-        }
-        self.solve_in_place(b)?;
-        Ok(false)
-    }
-
-    /// Solve `A x = b` in place (`b` is overwritten by `x`).
-    pub fn solve_in_place(&mut self, b: &mut [f64]) -> Result<(), LinSolveError> {
-        let sym = SymbolicSparseColMatRef::new_checked(
-            self.n,
-            self.n,
-            &self.col_ptr,
-            None,
-            &self.row_idx,
-        );
-        if self.symbolic.is_none() {
-            self.symbolic = Some(
-                SymbolicLu::try_new(sym).map_err(|e| LinSolveError::Symbolic(format!("{e:?}")))?,
-            );
-        }
-        let symbolic = self.symbolic.clone().expect("symbolic set above");
-        let mat = SparseColMatRef::new(sym, &self.values);
-        let lu = Lu::try_new_with_symbolic(symbolic, mat)
-            .map_err(|e| LinSolveError::Numeric(format!("{e:?}")))?;
-        lu.solve_in_place(ColMut::from_slice_mut(b));
-        if b.iter().any(|v| !v.is_finite()) {
-            return Err(LinSolveError::Numeric("non-finite solution".into()));
         }
         Ok(())
     }

@@ -38,7 +38,7 @@ pub mod mesh;
 pub mod model;
 pub mod solver;
 
-pub use contact::Interface;
+pub use contact::{CoulombOrowan, Interface};
 pub use convergence::{
     convergence_table, mesh_convergence, mesh_convergence_levels, p_at, ConvergenceRow,
     ConvergenceTable,
@@ -227,10 +227,13 @@ pub struct DeformedState {
     pub quads: Vec<[usize; 4]>,
     /// Contact-face node ids in order of increasing reference `X`.
     pub bottom: Vec<usize>,
-    /// Normal contact pressure `p/E*` per contact-face node: the contact force
-    /// magnitude `λ √(1 + y_s'²)` over the node's tributary length on the deformed
-    /// face (0 on free nodes).
+    /// Normal contact pressure `p/E*` per contact-face node: the normal contact force
+    /// over the node's tributary length on the deformed face (0 on free nodes).
     pub contact_pressure_over_estar: Vec<f64>,
+    /// Tangential contact traction `τ/E*` per contact-face node along the indenter's
+    /// tangent `(1, y_s')/w` (the friction traction; 0 when frictionless and on free
+    /// nodes).
+    pub contact_shear_over_estar: Vec<f64>,
 }
 
 /// A computed load curve.
@@ -292,6 +295,26 @@ pub fn validate(problem: &LayerProblem, opts: &SolveOptions) -> Result<(), Solve
         opts.until_a_over_lambda > 0.0 && opts.until_a_over_lambda < 0.5,
         "(0, 0.5)",
     )?;
+    if let Interface::CoulombOrowan(f) = problem.interface {
+        check_range(
+            "friction_coefficient",
+            f.friction_coefficient,
+            f.friction_coefficient > 0.0,
+            "> 0",
+        )?;
+        check_range(
+            "tau_max_over_estar",
+            f.tau_max_over_estar,
+            f.tau_max_over_estar > 0.0,
+            "> 0",
+        )?;
+        check_range(
+            "elastic_slip_over_element",
+            f.elastic_slip_over_element,
+            f.elastic_slip_over_element > 0.0,
+            "> 0",
+        )?;
+    }
     check_range("da_target", opts.da_target, opts.da_target >= 0.0, ">= 0")?;
     let (nx, ny) = opts.mesh.counts();
     check_range("mesh.nx", nx as f64, nx >= 2, ">= 2")?;
@@ -326,6 +349,8 @@ pub fn build_model(problem: &LayerProblem, opts: &SolveOptions) -> model::Model 
         contact::Indenter {
             amplitude: problem.aspect_ratio,
         },
+        problem.interface,
+        model::Lateral::Symmetric,
     )
 }
 

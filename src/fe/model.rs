@@ -8,22 +8,87 @@
 //! `y_s'' ∂Π/∂y` on sliding nodes), where `g = ∂Π/∂x` and `H = ∂²Π/∂x²` are assembled
 //! from the elements.
 //!
-//! Boundary conditions (units of λ, `h` the thickness, `d` the slab displacement):
-//! * bonded face `Y = h`: `x = X`, `y = h − d` (moves with the rigid slab);
-//! * lateral faces `X = 0`, `X = ½`: `x = X` (symmetry), `y` free;
-//! * contact face `Y = 0`: free, or active (on the indenter, see [`super::contact`]).
+//! Boundary conditions (units of λ, `h` the thickness, `d` the slab displacement, `d_x`
+//! its horizontal shift, 0 in the wavy problem):
+//! * bonded face `Y = h`: `x = X + d_x`, `y = h − d` (moves with the rigid slab);
+//! * lateral faces `X = 0`, `X = ½`: `x = X` (symmetry, [`Lateral::Symmetric`]), `y`
+//!   free; or traction-free ([`Lateral::Free`], the block of the friction test);
+//! * contact face `Y = 0`: free, or active (on the indenter, see [`super::contact`]),
+//!   with the friction force of [`Interface::CoulombOrowan`] on active sliding nodes.
 //!
 //! Loading is by the slab displacement `d` (displacement control). For monotonic,
 //! frictionless (path-independent) loading the equilibrium states are the same as under
 //! the corresponding force control, and displacement control avoids the limit-point
 //! and rigid-body issues of force control.
 
-use super::contact::Indenter;
+use super::contact::{Indenter, Interface};
 use super::element::{self, QuadRef};
 use super::linsys::SparseSystem;
 use super::material::NeoHooke;
 use super::mesh::Mesh;
 use super::Kinematics;
+
+/// Boundary condition of the lateral faces `X = 0` and `X = ½`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Lateral {
+    /// `x = X`: symmetry planes of the periodic wavy problem (REPLICATION.md R1).
+    #[default]
+    Symmetric,
+    /// Traction-free: a finite block.
+    Free,
+}
+
+/// Committed friction history of one contact-face node (see [`super::contact`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SlipHistory {
+    /// Elastic slip `e_n` at the last converged step (units of λ, `|e_n| ≤ e_c`).
+    pub elastic: f64,
+    /// Current `x` at the last converged step; the step's slip is the arc length from
+    /// here.
+    pub anchor_x: f64,
+}
+
+/// Friction law in solver units (`G = 1`, lengths in λ).
+#[derive(Clone, Copy, Debug)]
+struct FrictionLaw {
+    mu: f64,
+    /// `τ_max/G`.
+    tau_max: f64,
+    /// Elastic slip `e_c` at which the threshold is reached (units of λ).
+    slip_c: f64,
+}
+
+/// Friction regime of one active node.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Regime {
+    /// `N ≤ 0`: no threshold (the node is about to be released).
+    Open,
+    /// `L = μ N`.
+    Coulomb,
+    /// `L = τ_max ℓ`.
+    Orowan,
+}
+
+/// Friction force of one active node and what its derivatives need.
+#[derive(Clone, Copy, Debug)]
+struct FrictionEval {
+    /// `y_s'`, `y_s''` at the node, `w = √(1 + y_s'²)`.
+    s: f64,
+    c: f64,
+    w: f64,
+    /// `φ` and `dφ/dx`.
+    phi: f64,
+    dphi_dx: f64,
+    regime: Regime,
+    /// Tributary length `ℓ` and `∂ℓ/∂P` of the node and its two neighbours (zero where
+    /// absent).
+    ell: f64,
+    dell: [[f64; 2]; 3],
+    /// Threshold `L`.
+    limit: f64,
+    /// Residual contribution `w L φ`.
+    force: f64,
+}
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Role {
@@ -43,6 +108,10 @@ pub struct State {
     pub active: Vec<bool>,
     /// Slab displacement `d/λ` (positive pressing the layer onto the indenter).
     pub d: f64,
+    /// Horizontal slab shift `d_x/λ` (0 in the wavy problem).
+    pub dx: f64,
+    /// Friction history per contact-face node (empty without friction).
+    pub slip: Vec<SlipHistory>,
 }
 
 /// Assembled energy and forces.
@@ -73,6 +142,9 @@ pub struct Model {
     pub kin: Kinematics,
     /// Indenter.
     pub indenter: Indenter,
+    /// Lateral faces.
+    pub lateral: Lateral,
+    friction: Option<FrictionLaw>,
     refs: Vec<QuadRef>,
     k_lin: Vec<[[f64; 8]; 8]>,
     role: Vec<Role>,
@@ -83,8 +155,27 @@ pub struct Model {
 type SlotMap = Vec<[Option<[f64; 2]>; 2]>;
 
 impl Model {
-    /// Build the model.
-    pub fn new(mesh: Mesh, mat: NeoHooke, kin: Kinematics, indenter: Indenter) -> Self {
+    /// Build the model. `estar_over_g` converts the interface's `τ_max/E*` to solver units.
+    pub fn new(
+        mesh: Mesh,
+        mat: NeoHooke,
+        kin: Kinematics,
+        indenter: Indenter,
+        interface: Interface,
+        lateral: Lateral,
+    ) -> Self {
+        let friction = match interface {
+            Interface::Frictionless => None,
+            Interface::CoulombOrowan(f) => {
+                let width = mesh.nodes[*mesh.bottom.last().expect("contact face")][0]
+                    - mesh.nodes[mesh.bottom[0]][0];
+                Some(FrictionLaw {
+                    mu: f.friction_coefficient,
+                    tau_max: f.tau_max_over_estar * super::estar_over_g(mat.kappa / mat.g) * mat.g,
+                    slip_c: f.elastic_slip_over_element * width / mesh.nx as f64,
+                })
+            }
+        };
         let refs: Vec<QuadRef> = mesh
             .quads
             .iter()
@@ -117,15 +208,19 @@ impl Model {
             Kinematics::Finite => Vec::new(),
         };
         let mut role = vec![Role::Interior; mesh.nodes.len()];
-        for j in 0..=mesh.ny {
-            role[mesh.id(0, j)] = Role::Side;
-            role[mesh.id(mesh.nx, j)] = Role::Side;
+        if lateral == Lateral::Symmetric {
+            for j in 0..=mesh.ny {
+                role[mesh.id(0, j)] = Role::Side;
+                role[mesh.id(mesh.nx, j)] = Role::Side;
+            }
         }
         for &b in &mesh.bottom {
             role[b] = Role::Bottom;
         }
-        role[mesh.id(0, 0)] = Role::BottomCorner;
-        role[mesh.id(mesh.nx, 0)] = Role::BottomCorner;
+        if lateral == Lateral::Symmetric {
+            role[mesh.id(0, 0)] = Role::BottomCorner;
+            role[mesh.id(mesh.nx, 0)] = Role::BottomCorner;
+        }
         for &t in &mesh.top {
             role[t] = Role::Top;
         }
@@ -147,6 +242,8 @@ impl Model {
             mat,
             kin,
             indenter,
+            lateral,
+            friction,
             refs,
             k_lin,
             role,
@@ -158,11 +255,31 @@ impl Model {
     pub fn initial_state(&self) -> State {
         let mut active = vec![false; self.mesh.bottom.len()];
         active[0] = true;
+        let slip = if self.friction.is_some() {
+            self.mesh
+                .bottom
+                .iter()
+                .map(|&n| SlipHistory {
+                    elastic: 0.0,
+                    anchor_x: self.mesh.nodes[n][0],
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         State {
             x: self.mesh.nodes.clone(),
             active,
             d: 0.0,
+            dx: 0.0,
+            slip,
         }
+    }
+
+    /// Whether the reduced problem is an energy minimisation with a symmetric tangent
+    /// (frictionless), or not (friction).
+    pub fn is_potential(&self) -> bool {
+        self.friction.is_none()
     }
 
     fn bottom_slot(&self) -> Vec<Option<usize>> {
@@ -209,7 +326,7 @@ impl Model {
         for (n, r) in self.role.iter().enumerate() {
             let xr = self.mesh.nodes[n];
             match r {
-                Role::Top => st.x[n] = [xr[0], h - st.d],
+                Role::Top => st.x[n] = [xr[0] + st.dx, h - st.d],
                 Role::Side | Role::BottomCorner => st.x[n][0] = xr[0],
                 _ => {}
             }
@@ -276,7 +393,8 @@ impl Model {
     }
 
     /// Assemble energy, gradient, reduced residual and (if `with_matrix`) the reduced
-    /// tangent into `self.sys`. `None` if any element is inverted.
+    /// tangent into `self.sys`. `None` if any element is inverted. With friction, `energy`
+    /// is the elastic energy only (the problem is no longer a minimisation).
     pub fn assemble(&mut self, st: &State, with_matrix: bool) -> Option<Forces> {
         let nn = self.mesh.nodes.len();
         let map = self.slot_map(st);
@@ -284,6 +402,28 @@ impl Model {
         let mut energy = 0.0;
         let mut force_scale = 0.0_f64;
         let mut dresid_dd = vec![0.0; if with_matrix { 2 * nn } else { 0 }];
+        // Friction: active sliding nodes (contact-face index per node) and, per such node,
+        // the rows (−y_s', 1)ᵀ H[node, ·] mapped to slots (value position, value) and their
+        // derivative with respect to d (the Coulomb regime needs them, see `contact`).
+        let fric_of: Vec<Option<usize>> = match self.friction {
+            Some(_) if with_matrix => {
+                let mut f = vec![None; nn];
+                for (k, &n) in self.mesh.bottom.iter().enumerate() {
+                    if st.active[k] && map[n][0].is_some() {
+                        f[n] = Some(k);
+                    }
+                }
+                f
+            }
+            _ => Vec::new(),
+        };
+        let n_fric = if fric_of.is_empty() {
+            0
+        } else {
+            self.mesh.bottom.len()
+        };
+        let mut fric_rows: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n_fric];
+        let mut fric_dd = vec![0.0; n_fric];
         if with_matrix {
             self.sys.clear();
         }
@@ -336,6 +476,20 @@ impl Model {
                             }
                         }
                     }
+                    if let Some(k) = fric_of.get(q[a]).copied().flatten() {
+                        let sl = self.contact_slope(st, q[a]);
+                        for b in 0..4 {
+                            let nrow = |col: usize| -sl * hess[2 * a][col] + hess[2 * a + 1][col];
+                            if self.role[q[b]] == Role::Top {
+                                fric_dd[k] -= nrow(2 * b + 1);
+                            }
+                            for t in 0..2 {
+                                let Some(cb) = map[q[b]][t] else { continue };
+                                let v = nrow(2 * b) * cb[0] + nrow(2 * b + 1) * cb[1];
+                                fric_rows[k].push((pos[8 * (2 * a) + 2 * b + t], v));
+                            }
+                        }
+                    }
                 }
             }
         }
@@ -364,6 +518,55 @@ impl Model {
                 }
             }
         }
+        if let Some(law) = self.friction {
+            for (k, &n) in self.mesh.bottom.iter().enumerate() {
+                if !st.active[k] || map[n][0].is_none() {
+                    continue;
+                }
+                let f = self.friction_eval(st, k, &grad, &law);
+                resid[2 * n] += f.force;
+                if !with_matrix {
+                    continue;
+                }
+                let diag = self.sys.diag_pos[2 * n];
+                let (gx, gy) = (grad[2 * n], grad[2 * n + 1]);
+                match f.regime {
+                    Regime::Open => {}
+                    Regime::Coulomb => {
+                        // w L φ = μ φ (−s g_x + g_y)
+                        let coef = law.mu * f.phi;
+                        for &(p, v) in &fric_rows[k] {
+                            self.sys.values[p] += coef * v;
+                        }
+                        self.sys.values[diag] +=
+                            law.mu * f.dphi_dx * (gy - f.s * gx) - coef * f.c * gx;
+                        dresid_dd[2 * n] += coef * fric_dd[k];
+                    }
+                    Regime::Orowan => {
+                        // w L φ = w τ ℓ φ
+                        let cn = map[n][0].expect("sliding slot");
+                        let own = f.dell[1][0] * cn[0] + f.dell[1][1] * cn[1];
+                        self.sys.values[diag] += law.tau_max
+                            * (f.s * f.c / f.w * f.ell * f.phi
+                                + f.w * f.phi * own
+                                + f.w * f.ell * f.dphi_dx);
+                        for (j, m) in [k.wrapping_sub(1), k + 1].into_iter().enumerate() {
+                            let Some(&nm) = self.mesh.bottom.get(m) else { continue };
+                            let dl = f.dell[2 * j];
+                            for t in 0..2 {
+                                let Some(cm) = map[nm][t] else { continue };
+                                let p = self
+                                    .sys
+                                    .position(2 * n, 2 * nm + t)
+                                    .expect("neighbours share an element");
+                                self.sys.values[p] +=
+                                    f.w * law.tau_max * f.phi * (dl[0] * cm[0] + dl[1] * cm[1]);
+                            }
+                        }
+                    }
+                }
+            }
+        }
         Some(Forces {
             energy,
             grad,
@@ -371,6 +574,176 @@ impl Model {
             dresid_dd,
             force_scale,
         })
+    }
+
+    /// Slope `y_s'` of the indenter under contact-face node `n` as the contact law sees
+    /// it (0 for linear kinematics).
+    fn contact_slope(&self, st: &State, n: usize) -> f64 {
+        match self.kin {
+            Kinematics::Finite => self.indenter.slope(st.x[n][0]),
+            Kinematics::Linear => 0.0,
+        }
+    }
+
+    /// Arc length along the indenter from `x0` to `x1` as the contact law sees it.
+    fn contact_arc(&self, x0: f64, x1: f64) -> f64 {
+        match self.kin {
+            Kinematics::Finite => self.indenter.arc_length(x0, x1),
+            Kinematics::Linear => x1 - x0,
+        }
+    }
+
+    /// Trial elastic slip `e* = e_n + S(x) − S_n` of active contact-face node `k`.
+    fn trial_elastic_slip(&self, st: &State, k: usize) -> f64 {
+        let n = self.mesh.bottom[k];
+        let h = st.slip[k];
+        h.elastic + self.contact_arc(h.anchor_x, st.x[n][0])
+    }
+
+    /// Friction force of active contact-face node `k` (return mapping from the committed
+    /// history, see [`super::contact`]).
+    fn friction_eval(&self, st: &State, k: usize, grad: &[f64], law: &FrictionLaw) -> FrictionEval {
+        let b = &self.mesh.bottom;
+        let n = b[k];
+        let (s, c) = match self.kin {
+            Kinematics::Finite => (
+                self.indenter.slope(st.x[n][0]),
+                self.indenter.curvature(st.x[n][0]),
+            ),
+            Kinematics::Linear => (0.0, 0.0),
+        };
+        let w = (1.0 + s * s).sqrt();
+        let e = self.trial_elastic_slip(st, k);
+        let (phi, dphi_dx) = if e.abs() <= law.slip_c {
+            (e / law.slip_c, w / law.slip_c)
+        } else {
+            (e.signum(), 0.0)
+        };
+        // tributary length: half of each adjacent chord of the deformed face
+        let mut ell = 0.0;
+        let mut dell = [[0.0; 2]; 3];
+        for (j, m) in [k.wrapping_sub(1), k + 1].into_iter().enumerate() {
+            let Some(&nm) = b.get(m) else { continue };
+            let d = [st.x[nm][0] - st.x[n][0], st.x[nm][1] - st.x[n][1]];
+            let len = d[0].hypot(d[1]);
+            ell += 0.5 * len;
+            let u = [0.5 * d[0] / len, 0.5 * d[1] / len];
+            dell[2 * j] = u;
+            dell[1] = [dell[1][0] - u[0], dell[1][1] - u[1]];
+        }
+        let normal = (grad[2 * n + 1] - s * grad[2 * n]) / w;
+        let (regime, limit) = if normal <= 0.0 {
+            (Regime::Open, 0.0)
+        } else if law.mu * normal <= law.tau_max * ell {
+            (Regime::Coulomb, law.mu * normal)
+        } else {
+            (Regime::Orowan, law.tau_max * ell)
+        };
+        FrictionEval {
+            s,
+            c,
+            w,
+            phi,
+            dphi_dx,
+            regime,
+            ell,
+            dell,
+            limit,
+            force: w * limit * phi,
+        }
+    }
+
+    /// Commit the friction history of a converged load step: `e_{n+1} = e_c φ`,
+    /// `S_{n+1} = S(x)` on active nodes; reset on free ones. No-op without friction.
+    pub fn commit_slip(&self, st: &mut State) {
+        let Some(law) = self.friction else { return };
+        for (k, &n) in self.mesh.bottom.iter().enumerate() {
+            let elastic = if st.active[k] {
+                self.trial_elastic_slip(st, k).clamp(-law.slip_c, law.slip_c)
+            } else {
+                0.0
+            };
+            st.slip[k] = SlipHistory {
+                elastic,
+                anchor_x: st.x[n][0],
+            };
+        }
+    }
+
+    /// Put contact-face node `k` in contact: mark it active, move it to its closest point
+    /// on the indenter, and start its friction history there with no elastic slip.
+    pub fn activate(&self, st: &mut State, k: usize) {
+        st.active[k] = true;
+        self.project_closest(st, k);
+        if self.friction.is_some() {
+            let n = self.mesh.bottom[k];
+            st.slip[k] = SlipHistory {
+                elastic: 0.0,
+                anchor_x: st.x[n][0],
+            };
+        }
+    }
+
+    /// Normal contact force `N = (g_y − y_s' g_x)/w` of every contact-face node (0 on free
+    /// nodes), per unit depth, units `G λ`.
+    pub fn normal_forces(&self, st: &State, grad: &[f64]) -> Vec<f64> {
+        self.mesh
+            .bottom
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| {
+                if !st.active[k] {
+                    return 0.0;
+                }
+                let s = self.contact_slope(st, n);
+                (grad[2 * n + 1] - s * grad[2 * n]) / (1.0 + s * s).sqrt()
+            })
+            .collect()
+    }
+
+    /// Tangential contact force `T = (g_x + y_s' g_y)/w` along the indenter's tangent
+    /// `(1, y_s')/w` of every contact-face node (0 on free nodes): the friction force at
+    /// equilibrium.
+    pub fn tangential_forces(&self, st: &State, grad: &[f64]) -> Vec<f64> {
+        self.mesh
+            .bottom
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| {
+                if !st.active[k] {
+                    return 0.0;
+                }
+                let s = self.contact_slope(st, n);
+                (grad[2 * n] + s * grad[2 * n + 1]) / (1.0 + s * s).sqrt()
+            })
+            .collect()
+    }
+
+    /// Friction threshold `L = min(μ N, τ_max ℓ)` of every active contact-face node (units
+    /// `G λ`; empty without friction).
+    pub fn friction_thresholds(&self, st: &State, grad: &[f64]) -> Vec<f64> {
+        let Some(law) = self.friction else {
+            return Vec::new();
+        };
+        (0..self.mesh.bottom.len())
+            .map(|k| {
+                if !st.active[k] {
+                    return 0.0;
+                }
+                self.friction_eval(st, k, grad, &law).limit
+            })
+            .collect()
+    }
+
+    /// Elastic slip `e_c` at which the friction threshold is mobilised (units of λ;
+    /// `None` without friction).
+    pub fn elastic_slip_limit(&self) -> Option<f64> {
+        self.friction.map(|f| f.slip_c)
+    }
+
+    /// Horizontal force transmitted by the slab, `Σ_top ∂Π/∂x` (per unit depth, units `G λ`).
+    pub fn slab_shear(&self, grad: &[f64]) -> f64 {
+        self.mesh.top.iter().map(|&n| grad[2 * n]).sum::<f64>()
     }
 
     /// Apply the Newton update `α δ` (slot-wise) to `base`. Sliding nodes move in `x`

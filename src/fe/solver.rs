@@ -78,6 +78,16 @@ impl StepFail {
     }
 }
 
+/// Solve the assembled tangent for each right-hand side in place: Cholesky (LU fallback)
+/// for the symmetric frictionless tangent, LU with friction.
+fn linear_solve(
+    model: &mut Model,
+    rhs: &mut [Vec<f64>],
+) -> Result<(), super::linsys::LinSolveError> {
+    let symmetric = model.is_potential();
+    model.sys.solve_multi(rhs, symmetric)
+}
+
 fn inf_norm(v: &[f64]) -> f64 {
     v.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
 }
@@ -107,13 +117,14 @@ pub(crate) fn newton(
         if it == opts.max_newton_iterations || !res.is_finite() {
             break;
         }
-        let mut dq: Vec<f64> = f.resid.iter().map(|r| -r).collect();
-        if let Err(e) = model.sys.solve_symmetric_in_place(&mut dq) {
+        let mut rhs = [f.resid.iter().map(|r| -r).collect::<Vec<f64>>()];
+        if let Err(e) = linear_solve(model, &mut rhs) {
             return Err(StepFail::Linear {
                 iteration: it,
                 message: e.to_string(),
             });
         }
+        let [dq] = rhs;
         if inf_norm(&dq) <= opts.increment_atol {
             // correction below the round-off of the positions: converged
             *st = model.updated(st, &dq, 1.0);
@@ -130,7 +141,7 @@ pub(crate) fn newton(
         let mut accepted = None;
         for _ in 0..opts.max_line_search {
             let trial = model.updated(st, &dq, alpha);
-            if slope < 0.0 {
+            if slope < 0.0 && model.is_potential() {
                 if let Some(e) = model.energy(&trial) {
                     if e <= e0 + 1e-4 * alpha * slope + 1e-13 * e0.abs() {
                         accepted = Some(trial);
@@ -214,7 +225,7 @@ pub(crate) fn newton_edge(
             f.resid.iter().map(|r| -r).collect::<Vec<f64>>(),
             f.dresid_dd.iter().map(|r| -r).collect::<Vec<f64>>(),
         ];
-        if let Err(e) = model.sys.solve_symmetric_multi(&mut rhs) {
+        if let Err(e) = linear_solve(model, &mut rhs) {
             return Err(StepFail::Linear {
                 iteration: it,
                 message: e.to_string(),
@@ -295,7 +306,7 @@ pub(crate) fn equilibrate(
             iteration: total,
             residual: f64::NAN,
         })?;
-        let lam = model.multipliers(st, &f.grad);
+        let lam = model.normal_forces(st, &f.grad);
         let gaps = model.gaps(st);
         let lam_scale = lam.iter().fold(0.0_f64, |m, l| m.max(l.abs())).max(1e-300);
         let gap_tol = opts.gap_tolerance_over_amplitude * model.indenter.amplitude;
@@ -307,8 +318,7 @@ pub(crate) fn equilibrate(
                     changed = true;
                 }
             } else if gaps[k] < -gap_tol && exclude != Some(k) {
-                st.active[k] = true;
-                model.project_closest(st, k);
+                model.activate(st, k);
                 changed = true;
             }
         }
@@ -352,6 +362,8 @@ pub(crate) fn measure(
     let f = model
         .assemble(st, false)
         .expect("converged state is not inverted");
+    // p̄ from the contact tractions: the vertical components of the contact forces, which
+    // at equilibrium are the internal forces ∂Π/∂y of the active nodes.
     let lam = model.multipliers(st, &f.grad);
     let half = 0.5;
     let p_tr = lam.iter().sum::<f64>() / half / estar;
@@ -365,11 +377,16 @@ pub(crate) fn measure(
             newton_iterations: 0,
             active_nodes: st.active.iter().filter(|&&b| b).count(),
         },
-        lam,
+        f.grad,
     )
 }
 
-fn deformed_state(model: &Model, st: &State, lam: &[f64], estar: f64) -> DeformedState {
+/// The deformed state and its contact tractions: normal and tangential nodal contact
+/// forces ([`Model::normal_forces`], [`Model::tangential_forces`]) over each node's
+/// tributary length on the deformed face.
+fn deformed_state(model: &Model, st: &State, grad: &[f64], estar: f64) -> DeformedState {
+    let normal = model.normal_forces(st, grad);
+    let tangential = model.tangential_forces(st, grad);
     let b = &model.mesh.bottom;
     let n = b.len();
     let pos = |k: usize| st.x[b[k]];
@@ -377,22 +394,15 @@ fn deformed_state(model: &Model, st: &State, lam: &[f64], estar: f64) -> Deforme
         let (p, q) = (pos(k), pos(k + 1));
         ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)).sqrt()
     };
-    let pressure = (0..n)
-        .map(|k| {
-            let trib =
-                0.5 * (if k > 0 { seg(k - 1) } else { 0.0 } + if k + 1 < n { seg(k) } else { 0.0 });
-            let s = match model.kin {
-                Kinematics::Finite => model.indenter.slope(pos(k)[0]),
-                Kinematics::Linear => 0.0,
-            };
-            lam[k] * (1.0 + s * s).sqrt() / trib / estar
-        })
-        .collect();
+    let trib = |k: usize| {
+        0.5 * (if k > 0 { seg(k - 1) } else { 0.0 } + if k + 1 < n { seg(k) } else { 0.0 })
+    };
     DeformedState {
         nodes: st.x.clone(),
         quads: model.mesh.quads.clone(),
         bottom: b.clone(),
-        contact_pressure_over_estar: pressure,
+        contact_pressure_over_estar: (0..n).map(|k| normal[k] / trib(k) / estar).collect(),
+        contact_shear_over_estar: (0..n).map(|k| tangential[k] / trib(k) / estar).collect(),
     }
 }
 
@@ -411,12 +421,13 @@ fn predictor(
     let mut tries: Vec<State> = Vec::new();
     if tangent {
         if let Some(f) = model.assemble(cur, true) {
-            let mut z: Vec<f64> = f.dresid_dd.iter().map(|v| -v).collect();
-            if model.sys.solve_symmetric_in_place(&mut z).is_ok() {
+            let z: Vec<f64> = f.dresid_dd.iter().map(|v| -v).collect();
+            let mut rhs = [z];
+            if linear_solve(model, &mut rhs).is_ok() {
                 let mut st = cur.clone();
                 st.d = cur.d + dd;
                 model.enforce_constraints(&mut st);
-                tries.push(model.updated(&st, &z, dd));
+                tries.push(model.updated(&st, &rhs[0], dd));
             }
         }
     }
@@ -480,7 +491,7 @@ pub(crate) fn trace(
     let mut a_cur = 0.0;
     let mut points: Vec<CurvePoint> = Vec::new();
     let mut step = 1;
-    let mut last_lam = vec![0.0; nb];
+    let mut last_grad = vec![0.0; 2 * model.num_nodes()];
     let fail =
         |error: SolveError, points: Vec<CurvePoint>| Box::new(CurveFailure { error, points });
     while a_cur < opts.until_a_over_lambda {
@@ -622,23 +633,24 @@ pub(crate) fn trace(
             ));
         }
         let mut st = found;
-        st.active[k] = true;
+        model.activate(&mut st, k);
         model.enforce_constraints(&mut st);
         match equilibrate(model, &mut st, opts, None, None) {
             Ok(it) => iters += it,
             Err(f) => return Err(fail(f.into_error(step, st.d), points)),
         }
-        let (mut pt, lam) = measure(model, &st, estar, k);
+        model.commit_slip(&mut st);
+        let (mut pt, grad) = measure(model, &st, estar, k);
         pt.newton_iterations = iters;
         a_cur = pt.a_over_lambda;
         on_step(&pt);
         points.push(pt);
-        last_lam = lam;
+        last_grad = grad;
         dd_guess = st.d - cur.d;
         prev = Some(std::mem::replace(&mut cur, st));
         step += 1;
     }
-    let final_state = deformed_state(model, &cur, &last_lam, estar);
+    let final_state = deformed_state(model, &cur, &last_grad, estar);
     Ok(Curve {
         points,
         final_state,

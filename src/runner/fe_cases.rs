@@ -29,7 +29,11 @@ impl FeCase {
                 KinematicsName::Finite => Kinematics::Finite,
                 KinematicsName::Linear => Kinematics::Linear,
             },
-            interface: fe::Interface::Frictionless,
+            interface: fe::Interface::coulomb_orowan(
+                fe.friction_coefficient.get(),
+                tau_max_mpa / fe.estar_mpa.get(),
+                fe.elastic_slip_over_element.get(),
+            ),
         };
         let options = SolveOptions {
             until_a_over_lambda: fe.until_a_over_lambda.get(),
