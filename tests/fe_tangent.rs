@@ -199,7 +199,11 @@ fn friction_tangent_matches_central_differences() {
             let normal = m.normal_forces(&st, &f.grad);
             let limit = m.friction_thresholds(&st, &f.grad);
             for k in 1..4 {
-                assert!(normal[k] > 0.0, "{kin:?} {name}: node {k} N = {}", normal[k]);
+                assert!(
+                    normal[k] > 0.0,
+                    "{kin:?} {name}: node {k} N = {}",
+                    normal[k]
+                );
                 let coulomb = limit[k] == mu * normal[k];
                 assert_eq!(coulomb, name == "coulomb", "{kin:?} {name}: node {k}");
             }

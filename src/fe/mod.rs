@@ -20,6 +20,7 @@
 //!   contact-edge event to the next (the load at which the next contact-face node
 //!   touches, found by a bordered Newton solve with `d` as unknown, secant fallback),
 //!   step cutting, contact-edge location; [`linsys`]: sparse Cholesky/LU through faer;
+//! * [`shear_test`]: a block pressed onto a flat and sheared, verifying the friction law;
 //! * [`convergence`]: interpolation of curves at fixed `a/λ` and the mesh-convergence
 //!   (Richardson) table.
 //!
@@ -36,6 +37,7 @@ pub mod linsys;
 pub mod material;
 pub mod mesh;
 pub mod model;
+pub mod shear_test;
 pub mod solver;
 
 pub use contact::{CoulombOrowan, Interface};

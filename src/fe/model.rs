@@ -551,7 +551,9 @@ impl Model {
                                 + f.w * f.phi * own
                                 + f.w * f.ell * f.dphi_dx);
                         for (j, m) in [k.wrapping_sub(1), k + 1].into_iter().enumerate() {
-                            let Some(&nm) = self.mesh.bottom.get(m) else { continue };
+                            let Some(&nm) = self.mesh.bottom.get(m) else {
+                                continue;
+                            };
                             let dl = f.dell[2 * j];
                             for t in 0..2 {
                                 let Some(cm) = map[nm][t] else { continue };
@@ -659,7 +661,8 @@ impl Model {
         let Some(law) = self.friction else { return };
         for (k, &n) in self.mesh.bottom.iter().enumerate() {
             let elastic = if st.active[k] {
-                self.trial_elastic_slip(st, k).clamp(-law.slip_c, law.slip_c)
+                self.trial_elastic_slip(st, k)
+                    .clamp(-law.slip_c, law.slip_c)
             } else {
                 0.0
             };

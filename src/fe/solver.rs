@@ -47,7 +47,7 @@ pub(crate) enum StepFail {
 }
 
 impl StepFail {
-    fn into_error(self, step: usize, d: f64) -> SolveError {
+    pub(crate) fn into_error(self, step: usize, d: f64) -> SolveError {
         match self {
             StepFail::Diverged {
                 iteration,

@@ -1,0 +1,96 @@
+//! Friction verification (issue #4, 2 (i)): a block pressed onto a flat rigid surface and
+//! then sheared slides when the mean shear reaches min(μ p̄, τ_max) and not before
+//! (`wavy::fe::shear_test`). Reference: the Coulomb–Orowan law itself (R3): the total
+//! friction force of a sliding face is Σ min(μ N_i, τ_max ℓ_i), which is μ p̄ W when
+//! Coulomb governs everywhere and τ_max × (deformed face length) when Orowan does.
+use wavy::fe::shear_test::{press_and_shear, ShearPoint, ShearTest};
+use wavy::fe::CoulombOrowan;
+
+fn run(mu: f64, tau_max_over_estar: f64) -> Vec<ShearPoint> {
+    let test = ShearTest {
+        kappa_over_g: 2.0 / 3.0, // ν = 0: uniform pressure, friction idle while pressing
+        friction: CoulombOrowan {
+            friction_coefficient: mu,
+            tau_max_over_estar,
+            elastic_slip_over_element: 0.005,
+        },
+        elements: (16, 8),
+        height_over_width: 0.5,
+        press_over_height: 0.02,
+        shift_over_height: 0.03,
+        steps: (2, 30),
+    };
+    press_and_shear(&test).expect("press and shear")
+}
+
+fn check(points: &[ShearPoint], expected_limit: impl Fn(&ShearPoint) -> f64, what: &str) {
+    let sliding = points
+        .iter()
+        .position(|p| p.slipping_nodes == p.nodes)
+        .unwrap_or_else(|| panic!("{what}: the block never slides"));
+    assert!(
+        sliding > 3 && sliding + 5 < points.len(),
+        "{what}: sliding starts at step {sliding} of {}",
+        points.len()
+    );
+    for (i, p) in points.iter().enumerate() {
+        let limit = expected_limit(p);
+        // the threshold sum is the law's limit (exact identity of the nodal sums)
+        assert!(
+            (p.threshold_over_estar / limit - 1.0).abs() <= 1e-9,
+            "{what} step {i}: Σ thresholds {} vs limit {limit}",
+            p.threshold_over_estar
+        );
+        // never above the limit (Newton residual ≤ 1e-10 of the nodal forces)
+        assert!(
+            p.mean_shear_over_estar <= limit * (1.0 + 1e-8),
+            "{what} step {i}: shear {} above the limit {limit}",
+            p.mean_shear_over_estar
+        );
+        if i < sliding {
+            // not before: some node sticks, the face has not slid, the shear is below
+            assert!(p.min_face_displacement_over_elastic_slip <= 1.0 + 1e-9);
+            assert!(
+                p.mean_shear_over_estar < limit * (1.0 - 1e-6),
+                "{what} step {i}: at the limit {limit} before sliding"
+            );
+        } else {
+            // sliding: the shear sits on the limit and the whole face moves on
+            assert!(
+                (p.mean_shear_over_estar / limit - 1.0).abs() <= 1e-8,
+                "{what} step {i}: shear {} vs limit {limit}",
+                p.mean_shear_over_estar
+            );
+        }
+    }
+    let last = points.last().unwrap();
+    assert!(
+        last.min_face_displacement_over_elastic_slip > 10.0,
+        "{what}: face moved only {} e_c",
+        last.min_face_displacement_over_elastic_slip
+    );
+    // the shear rises until sliding
+    for w in points[..=sliding].windows(2) {
+        assert!(w[1].mean_shear_over_estar > w[0].mean_shear_over_estar);
+    }
+}
+
+#[test]
+fn block_slides_at_mu_p_when_coulomb_governs() {
+    let mu = 0.3;
+    let pts = run(mu, 10.0);
+    // p̄/E* ≈ the pressing strain 0.02 (ν = 0, E* = E)
+    let p = pts[0].mean_pressure_over_estar;
+    assert!((p / 0.02 - 1.0).abs() < 0.02, "p̄/E* = {p}");
+    check(&pts, |pt| mu * pt.mean_pressure_over_estar, "Coulomb");
+}
+
+#[test]
+fn block_slides_at_tau_max_when_orowan_governs() {
+    let tau = 0.004; // below μ p̄ = 0.02 with μ = 1
+    let pts = run(1.0, tau);
+    check(&pts, |pt| tau * pt.contact_length_over_width, "Orowan");
+    // the deformed face is as long as the undeformed one to O(strain²)
+    let l = pts.last().unwrap().contact_length_over_width;
+    assert!((l - 1.0).abs() < 1e-3, "face length / width = {l}");
+}
