@@ -88,6 +88,10 @@ fn linear_solve(
     model.sys.solve_multi(rhs, symmetric)
 }
 
+fn l2_norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
 fn inf_norm(v: &[f64]) -> f64 {
     v.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
 }
@@ -130,13 +134,14 @@ pub(crate) fn newton(
             *st = model.updated(st, &dq, 1.0);
             return Ok(it + 1);
         }
-        if model.kin == Kinematics::Linear {
+        if model.kin == Kinematics::Linear && model.is_potential() {
             // quadratic energy: the Newton step is exact
             *st = model.updated(st, &dq, 1.0);
             continue;
         }
         let slope: f64 = f.resid.iter().zip(&dq).map(|(r, d)| r * d).sum();
         let e0 = f.energy;
+        let res2 = l2_norm(&f.resid);
         let mut alpha = 1.0;
         let mut accepted = None;
         for _ in 0..opts.max_line_search {
@@ -149,7 +154,7 @@ pub(crate) fn newton(
                     }
                 }
             } else if let Some(ft) = model.assemble(&trial, false) {
-                if inf_norm(&ft.resid) < (1.0 - 1e-4 * alpha) * res {
+                if l2_norm(&ft.resid) < (1.0 - 1e-4 * alpha) * res2 {
                     accepted = Some(trial);
                     break;
                 }
@@ -253,7 +258,9 @@ pub(crate) fn newton_edge(
             if let Some(ft) = model.assemble(&trial, false) {
                 let (ct, _) = model.edge_constraint(&trial, k);
                 let m = inf_norm(&ft.resid) + kscale * ct.abs();
-                if m < (1.0 - 1e-4 * alpha) * merit || model.kin == Kinematics::Linear {
+                if m < (1.0 - 1e-4 * alpha) * merit
+                    || (model.kin == Kinematics::Linear && model.is_potential())
+                {
                     accepted = Some(trial);
                     break;
                 }
