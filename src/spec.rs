@@ -7,7 +7,8 @@
 //! - `[correction_surfaces]`: the surfaces A(AR, τ_max), B(AR, τ_max) (paper Fig. 2);
 //! - `[fe_vs_model]`: p̄/E* against a/λ per (AR, τ_max) panel (paper Fig. 3);
 //! - `[fingertip_area]`: total contact area against load for fingerprint ridges (paper Fig. 5, R8);
-//! - `[deformed_mesh]`: the deformed FE mesh and its contact pressure at the end of loading.
+//! - `[deformed_mesh]`: the deformed FE mesh and its contact pressure at the end of loading;
+//! - `[table1_refit]`: the WNL coefficients (paper Table 1) fitted to our FE curves.
 //!
 //! This module reads no file: [`Spec::parse`] takes the text and the name to quote in errors.
 
@@ -67,6 +68,20 @@ pub struct Spec {
     pub fe_vs_model: Option<FeVsModelScene>,
     pub fingertip_area: Option<FingertipAreaScene>,
     pub deformed_mesh: Option<DeformedMeshScene>,
+    pub table1_refit: Option<Table1RefitScene>,
+}
+
+/// Paper Table 1 re-derived: the twelve WNL coefficients fitted by least squares in p̄/E* to our
+/// FE curves, once per reading of Eq. 4 (R5), beside the paper's.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Table1RefitScene {
+    /// Aspect ratios Δ/λ of the FE curves (at least three: the polynomials are quadratic).
+    pub aspect_ratios: Vec<Bounded<Positive>>,
+    /// τ_max grid (MPa) on which the fitted A and B are drawn against the paper's.
+    pub tau_max_mpa: Grid,
+    /// The FE curves; `fe.tau_max_mpa` (at least three values) are the fitted shear strengths.
+    pub fe: FeSection,
 }
 
 /// The deformed finite-element mesh and its contact pressure at the end of loading.
@@ -97,6 +112,7 @@ pub enum Scene<'a> {
     FeVsModel(&'a FeVsModelScene),
     FingertipArea(&'a FingertipAreaScene),
     DeformedMesh(&'a DeformedMeshScene),
+    Table1Refit(&'a Table1RefitScene),
 }
 
 /// Paper Fig. 2: A and B over an (AR, τ_max) grid.
@@ -242,6 +258,10 @@ pub struct ModelSelection {
     /// WNL coefficient set, by name (`paper-table1`).
     #[serde(default = "default_coefficients")]
     pub coefficients: String,
+    /// A second WNL coefficient set (e.g. our refit of Table 1) drawn dashed and scored
+    /// against the FE points beside the first; none by default.
+    #[serde(default)]
+    pub compare_coefficients: Option<String>,
 }
 
 /// A model line by name.
@@ -396,6 +416,8 @@ impl Spec {
             Scene::FingertipArea(s)
         } else if let Some(s) = &self.deformed_mesh {
             Scene::DeformedMesh(s)
+        } else if let Some(s) = &self.table1_refit {
+            Scene::Table1Refit(s)
         } else {
             unreachable!("Spec::parse admits exactly one scene table")
         }
@@ -408,6 +430,7 @@ impl Spec {
             self.fe_vs_model.is_some(),
             self.fingertip_area.is_some(),
             self.deformed_mesh.is_some(),
+            self.table1_refit.is_some(),
         ];
         let n = scenes.iter().filter(|&&s| s).count();
         if n != 1 {
@@ -416,7 +439,7 @@ impl Spec {
                 field: "(scene table)".into(),
                 location: Location(None),
                 value: format!("{n} scene tables"),
-                allowed: "exactly one of [correction_surfaces], [fe_vs_model], [fingertip_area], [deformed_mesh]"
+                allowed: "exactly one of [correction_surfaces], [fe_vs_model], [fingertip_area], [deformed_mesh], [table1_refit]"
                     .into(),
             });
         }
@@ -457,6 +480,25 @@ impl Spec {
                 let panels: Vec<f64> = s.tau_max_mpa.iter().map(|t| t.get()).collect();
                 v.fe_section("fe_vs_model.fe", fe, Some(&panels))?;
             }
+        }
+        if let Some(s) = &self.table1_refit {
+            v.at_least(
+                "table1_refit.aspect_ratios",
+                s.aspect_ratios.iter().map(|a| a.get()),
+                3,
+            )?;
+            v.fe_section("table1_refit.fe", &s.fe, None)?;
+            v.at_least(
+                "table1_refit.fe.tau_max_mpa",
+                s.fe.tau_max_mpa.iter().map(|t| t.get()),
+                3,
+            )?;
+            v.grid(
+                "table1_refit.tau_max_mpa",
+                &s.tau_max_mpa,
+                (0.0, f64::INFINITY),
+                true,
+            )?;
         }
         if let Some(s) = &self.deformed_mesh {
             v.fe_section("deformed_mesh.fe", &s.fe, None)?;
@@ -593,6 +635,27 @@ impl Validator<'_> {
         Ok(())
     }
 
+    /// At least `n` distinct values (a quadratic polynomial in a variable needs three).
+    fn at_least(
+        &self,
+        field: &str,
+        values: impl Iterator<Item = f64>,
+        n: usize,
+    ) -> Result<(), SpecError> {
+        let mut v: Vec<f64> = values.collect();
+        v.sort_by(f64::total_cmp);
+        v.dedup();
+        if v.len() < n {
+            return Err(self.invalid(
+                field,
+                None,
+                format!("{v:?}"),
+                format!("at least {n} distinct values"),
+            ));
+        }
+        Ok(())
+    }
+
     fn non_empty(&self, field: &str, len: usize) -> Result<(), SpecError> {
         if len == 0 {
             return Err(self.invalid(field, None, "[]".into(), "at least one value".into()));
@@ -614,7 +677,11 @@ impl Validator<'_> {
 
     fn models(&self, field: &str, m: &ModelSelection) -> Result<(), SpecError> {
         self.non_empty(&format!("{field}.draw"), m.draw.len())?;
-        self.coefficients(&format!("{field}.coefficients"), &m.coefficients)
+        self.coefficients(&format!("{field}.coefficients"), &m.coefficients)?;
+        if let Some(c) = &m.compare_coefficients {
+            self.coefficients(&format!("{field}.compare_coefficients"), c)?;
+        }
+        Ok(())
     }
 }
 

@@ -1,8 +1,46 @@
 //! Finite-element curves as sweep cases: what identifies one, and how it is cached.
 
-use super::sweep::{Cacheable, SweepCase};
+use super::sweep::{self, Cacheable, SweepCase};
+use super::RunOptions;
 use crate::fe::{self, CurvePoint, Kinematics, LayerProblem, SolveOptions};
 use crate::spec::{FeSection, KinematicsName};
+use anyhow::Result;
+
+/// The FE cases of a section: one per (τ_max, AR), τ_max outer, at the run's mesh override
+/// if it has one. Scenes that list the same section and aspect ratios share their cache files.
+pub fn section_cases(fe: &FeSection, aspect_ratios: &[f64], opts: &RunOptions) -> Vec<FeCase> {
+    let mut cases = vec![];
+    for tau in fe.tau_max_mpa.iter().map(|t| t.get()) {
+        for &ar in aspect_ratios {
+            let mut case = FeCase::from_section(fe, ar, tau);
+            if let Some(mesh) = opts.fe_mesh_override {
+                case.options.mesh = mesh;
+            }
+            cases.push(case);
+        }
+    }
+    cases
+}
+
+/// Every case's curve, from the cache or computed (in parallel, whatever the run's shard).
+pub fn solve_all(cases: &[FeCase], opts: &RunOptions) -> Result<Vec<FeOutcome>> {
+    let unsharded = sweep::SweepOptions {
+        shard: None,
+        ..opts.sweep.clone()
+    };
+    let swept = sweep::run(cases, &unsharded, FeCase::solve)?;
+    Ok(swept
+        .results
+        .into_iter()
+        .map(|r| r.expect("an unsharded sweep computes every case"))
+        .collect())
+}
+
+/// This shard's share of `cases`, computed into the cache: (computed, already cached).
+pub fn compute_share(cases: &[FeCase], opts: &RunOptions) -> Result<(usize, usize)> {
+    let r = sweep::run(cases, &opts.sweep, FeCase::solve)?;
+    Ok((r.computed, r.from_cache))
+}
 
 /// Fingerprint of the solver's source (build.rs): a changed solver never reads old results.
 pub const FE_SOURCE_SHA256: &str = env!("WAVY_FE_SOURCE_SHA256");

@@ -1,33 +1,23 @@
 //! Paper Fig. 3: p̄/E* against a/λ, one panel per (AR, τ_max): model lines, and finite-element
 //! points with the mean squared error of each model against them where the spec asks for FE.
 
-use super::fe_cases::{FeCase, FeOutcome};
-use super::{model_key, model_laws, padded_range, sweep, RunOptions};
+use super::fe_cases::{self, FeCase, FeOutcome};
+use super::{model_key, model_laws, padded_range, RunOptions};
 use crate::models::{ModelLaw, PressureLaw};
 use crate::plot::{palette, Figure, LegendPosition, Panel, Series};
 use crate::spec::{FeVsModelScene, ModelName};
 use crate::table::{Cell, Table};
 use anyhow::Result;
 
-/// The FE cases of a scene, in (τ_max, AR) order, with their panel coordinates.
+/// The FE cases of a scene, in (τ_max, AR) order.
 fn fe_cases(s: &FeVsModelScene, opts: &RunOptions) -> Vec<FeCase> {
     let Some(fe) = &s.fe else { return vec![] };
-    let mut cases = vec![];
-    for tau in fe.tau_max_mpa.iter().map(|t| t.get()) {
-        for ar in s.aspect_ratios.iter().map(|a| a.get()) {
-            let mut case = FeCase::from_section(fe, ar, tau);
-            if let Some(mesh) = opts.fe_mesh_override {
-                case.options.mesh = mesh;
-            }
-            cases.push(case);
-        }
-    }
-    cases
+    let ars: Vec<f64> = s.aspect_ratios.iter().map(|a| a.get()).collect();
+    fe_cases::section_cases(fe, &ars, opts)
 }
 
 pub(super) fn compute_share(s: &FeVsModelScene, opts: &RunOptions) -> Result<(usize, usize)> {
-    let r = sweep::run(&fe_cases(s, opts), &opts.sweep, FeCase::solve)?;
-    Ok((r.computed, r.from_cache))
+    fe_cases::compute_share(&fe_cases(s, opts), opts)
 }
 
 /// Mean squared error and largest absolute deviation of `law` against FE points, in p̄/E*.
@@ -50,20 +40,13 @@ pub(super) fn run(
     let taus: Vec<f64> = s.tau_max_mpa.iter().map(|v| v.get()).collect();
 
     let cases = fe_cases(s, opts);
-    let unsharded = RunOptions {
-        sweep: sweep::SweepOptions {
-            shard: None,
-            ..opts.sweep.clone()
-        },
-        ..opts.clone()
-    };
-    let swept = sweep::run(&cases, &unsharded.sweep, FeCase::solve)?;
+    let outcomes = fe_cases::solve_all(&cases, opts)?;
     let fe_at = |ar: f64, tau: f64| -> Option<&FeOutcome> {
         cases
             .iter()
-            .zip(&swept.results)
+            .zip(&outcomes)
             .find(|(c, _)| c.problem.aspect_ratio == ar && c.tau_max_mpa == tau)
-            .and_then(|(_, r)| r.as_ref())
+            .map(|(_, r)| r)
     };
 
     let mut header = vec!["aspect_ratio", "tau_max_mpa", "a_over_lambda"];
@@ -95,6 +78,15 @@ pub(super) fn run(
         mse_header.push(format!("mse_{}", model_key(m)));
         mse_header.push(format!("max_abs_dev_{}", model_key(m)));
     }
+    let compare_key = s
+        .models
+        .compare_coefficients
+        .as_ref()
+        .map(|c| format!("wnl_{}", c.replace('-', "_")));
+    if let Some(key) = &compare_key {
+        mse_header.push(format!("mse_{key}"));
+        mse_header.push(format!("max_abs_dev_{key}"));
+    }
     mse_header.push("fe_status".into());
     let mut mse = Table::new(
         "mse",
@@ -108,6 +100,11 @@ pub(super) fn run(
     for &tau in &taus {
         for &ar in &ars {
             let laws = model_laws(&s.models, ar, tau);
+            let compare = s.models.compare_coefficients.as_ref().map(|name| {
+                let c = crate::coefficient_sets::by_name(name)
+                    .expect("coefficient set names are validated when the spec is parsed");
+                ModelLaw::Wnl(crate::models::Wnl::new(ar, tau, s.models.reading, c))
+            });
             let extrapolated = laws.iter().any(|(_, l)| l.is_extrapolated());
             if extrapolated {
                 extrapolated_panels.push(format!("AR = {ar}, τ_max = {tau} MPa"));
@@ -152,6 +149,16 @@ pub(super) fn run(
                         panel_notes.push(format!("MSE(WNL) = {}", crate::numfmt::sig_digits(m, 2)));
                     }
                 }
+                if let Some(law) = &compare {
+                    let (m, d) = errors(law, fe);
+                    row.push(m.into());
+                    row.push(d.into());
+                    panel_notes.push(format!(
+                        "MSE(WNL, {}) = {}",
+                        s.models.compare_coefficients.as_deref().unwrap_or_default(),
+                        crate::numfmt::sig_digits(m, 2)
+                    ));
+                }
                 let status = match &fe.failure {
                     None => "complete".to_string(),
                     Some(f) => {
@@ -174,6 +181,15 @@ pub(super) fn run(
                 };
                 Series::line(Some(label), color, 2, pts)
             }));
+            if let (Some(law), Some(name)) = (&compare, &s.models.compare_coefficients) {
+                let pts = xs.iter().map(|&x| (x, law.p_over_estar(x))).collect();
+                series.push(Series::dashed(
+                    Some(format!("WNL ({}, {name})", s.models.reading)),
+                    palette::BLUE,
+                    2,
+                    pts,
+                ));
+            }
             let y = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
             if extrapolated {
                 panel_notes.push("WNL extrapolated".into());

@@ -11,6 +11,7 @@ mod fe_vs_model;
 mod fingertip_area;
 pub mod measured;
 pub mod sweep;
+mod table1_refit;
 
 use crate::coefficient_sets;
 use crate::models::{ModelLaw, Westergaard, Wnl};
@@ -57,6 +58,7 @@ pub fn compute_share(path: &Path, opts: &RunOptions) -> Result<(usize, usize)> {
     let spec = load_spec(path)?;
     match spec.scene() {
         Scene::FeVsModel(s) => fe_vs_model::compute_share(s, opts),
+        Scene::Table1Refit(s) => table1_refit::compute_share(s, opts),
         _ => Ok((0, 0)),
     }
 }
@@ -95,6 +97,7 @@ pub fn run_spec(
         Scene::FeVsModel(s) => fe_vs_model::run(&spec.title, s, opts)?,
         Scene::DeformedMesh(s) => deformed_mesh::run(&spec.title, s, opts)?,
         Scene::FingertipArea(s) => fingertip_area::run(&spec.title, s, spec_dir)?,
+        Scene::Table1Refit(s) => table1_refit::run(&spec.title, s, opts)?,
     };
     let svg = crate::plot::render_svg(&figure)?;
     Ok(SceneOutput {

@@ -1,0 +1,204 @@
+//! Paper Table 1 re-derived: the twelve WNL coefficients fitted to our FE curves, once per
+//! reading of Eq. 4, beside the paper's; and the paper's own coefficients scored against the
+//! same curves.
+
+use super::fe_cases::{self, FeCase};
+use super::{padded_range, RunOptions};
+use crate::fit::{self, CurveSample, Refit};
+use crate::models::wnl::quadratic_surface;
+use crate::models::{Coefficients, FitDomain, Reading};
+use crate::plot::{palette, Figure, LegendPosition, Panel, Series};
+use crate::spec::Table1RefitScene;
+use crate::table::{Cell, Table};
+use anyhow::{Context, Result};
+
+fn cases(s: &Table1RefitScene, opts: &RunOptions) -> Vec<FeCase> {
+    let ars: Vec<f64> = s.aspect_ratios.iter().map(|a| a.get()).collect();
+    fe_cases::section_cases(&s.fe, &ars, opts)
+}
+
+pub(super) fn compute_share(s: &Table1RefitScene, opts: &RunOptions) -> Result<(usize, usize)> {
+    fe_cases::compute_share(&cases(s, opts), opts)
+}
+
+/// One fitted reading: our refit and the paper's coefficients scored on the same samples.
+pub struct ReadingFit {
+    pub refit: Refit,
+    pub paper_mse: f64,
+}
+
+/// Fits every reading to the FE points of `samples`.
+pub fn fit_readings(samples: &[CurveSample], domain: FitDomain) -> Result<Vec<ReadingFit>> {
+    Reading::ALL
+        .iter()
+        .map(|&reading| {
+            let refit = fit::refit(samples, reading, domain)
+                .with_context(|| format!("refit of reading {reading}"))?;
+            let paper_mse = fit::mse(samples, reading, Coefficients::PAPER_TABLE1);
+            Ok(ReadingFit { refit, paper_mse })
+        })
+        .collect()
+}
+
+pub(super) fn run(
+    title: &str,
+    s: &Table1RefitScene,
+    opts: &RunOptions,
+) -> Result<(Vec<Table>, Figure, Vec<String>)> {
+    let cases = cases(s, opts);
+    let outcomes = fe_cases::solve_all(&cases, opts)?;
+    let mut notes = vec![];
+    let mut samples = vec![];
+    for (case, outcome) in cases.iter().zip(&outcomes) {
+        if let Some(f) = &outcome.failure {
+            notes.push(format!(
+                "FE curve AR = {}, τ_max = {} MPa is incomplete ({f}); its converged points are fitted",
+                case.problem.aspect_ratio, case.tau_max_mpa
+            ));
+        }
+        samples.extend(outcome.points.iter().map(|p| CurveSample {
+            aspect_ratio: case.problem.aspect_ratio,
+            tau_max_mpa: case.tau_max_mpa,
+            a_over_lambda: p.a_over_lambda,
+            p_over_estar: p.p_over_estar,
+        }));
+    }
+    let span = |v: &mut dyn Iterator<Item = f64>| {
+        v.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(x), hi.max(x))
+        })
+    };
+    let (ar_lo, ar_hi) = span(&mut cases.iter().map(|c| c.problem.aspect_ratio));
+    let (tau_lo, tau_hi) = span(&mut cases.iter().map(|c| c.tau_max_mpa));
+    let domain = FitDomain {
+        aspect_ratio_min: ar_lo,
+        aspect_ratio_max: ar_hi,
+        tau_max_mpa_min: tau_lo,
+        tau_max_mpa_max: tau_hi,
+    };
+    let fits = fit_readings(&samples, domain)?;
+
+    // Coefficients beside the paper's.
+    let mut header = vec!["coefficient".to_string(), "paper".to_string()];
+    header.extend(
+        fits.iter()
+            .map(|f| format!("ours_{}", f.refit.reading.name().replace('-', "_"))),
+    );
+    let mut coefficients = Table::new("", &header.iter().map(String::as_str).collect::<Vec<_>>());
+    let paper = Coefficients::PAPER_TABLE1;
+    for (letter, pick) in [("a", 0usize), ("b", 1)] {
+        for i in 0..6 {
+            let get = |c: &Coefficients| if pick == 0 { c.a[i] } else { c.b[i] };
+            let mut row: Vec<Cell> = vec![format!("{letter}{i}").into(), get(&paper).into()];
+            row.extend(fits.iter().map(|f| Cell::Num(get(&f.refit.coefficients))));
+            coefficients.push(row);
+        }
+    }
+    // How well each reading fits, and how well the paper's coefficients do on our curves.
+    let mut quality = Table::new(
+        "fit",
+        &[
+            "reading",
+            "samples",
+            "mse_ours",
+            "mse_paper_table1",
+            "relative_optimality",
+            "condition_number",
+        ],
+    );
+    for f in &fits {
+        quality.push(vec![
+            f.refit.reading.name().into(),
+            (f.refit.samples as f64).into(),
+            f.refit.mse.into(),
+            f.paper_mse.into(),
+            f.refit.relative_optimality.into(),
+            f.refit.condition_number.into(),
+        ]);
+    }
+    let best = fits
+        .iter()
+        .min_by(|x, y| x.refit.mse.total_cmp(&y.refit.mse))
+        .expect("three readings");
+    notes.push(format!(
+        "best reading of Eq. 4 on our FE curves: {} (MSE {}; {})",
+        best.refit.reading,
+        crate::numfmt::sig_digits(best.refit.mse, 3),
+        fits.iter()
+            .filter(|f| f.refit.reading != best.refit.reading)
+            .map(|f| format!(
+                "{} {}",
+                f.refit.reading,
+                crate::numfmt::sig_digits(f.refit.mse, 3)
+            ))
+            .collect::<Vec<_>>()
+            .join(", ")
+    ));
+
+    // Figure: per reading, A and B against τ_max at the FE aspect ratios, ours against the paper's.
+    let taus = s.tau_max_mpa.values();
+    let ars: Vec<f64> = s.aspect_ratios.iter().map(|a| a.get()).collect();
+    let mut panels = vec![];
+    for f in &fits {
+        for (name, pick) in [("A", 0usize), ("B", 1)] {
+            let mut series = vec![];
+            for (k, &ar) in ars.iter().enumerate() {
+                let color = palette::CYCLE[k % palette::CYCLE.len()];
+                let surface = |c: &Coefficients| -> Vec<(f64, f64)> {
+                    let coeffs = if pick == 0 { &c.a } else { &c.b };
+                    taus.iter()
+                        .map(|&t| (t, quadratic_surface(coeffs, ar, t)))
+                        .collect()
+                };
+                series.push(Series::line(
+                    Some(format!("ours, AR = {ar}")),
+                    color,
+                    2,
+                    surface(&f.refit.coefficients),
+                ));
+                series.push(Series::dashed(
+                    Some(format!("paper, AR = {ar}")),
+                    color,
+                    1,
+                    surface(&paper),
+                ));
+            }
+            let y = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
+            panels.push(Panel {
+                title: format!("{name}(AR, τ_max), reading {}", f.refit.reading),
+                x_label: "τ_max (MPa)".into(),
+                y_label: name.into(),
+                x_range: (taus[0], taus[taus.len() - 1]),
+                y_range: y,
+                series,
+                notes: vec![
+                    format!("MSE ours {}", crate::numfmt::sig_digits(f.refit.mse, 2)),
+                    format!("MSE paper {}", crate::numfmt::sig_digits(f.paper_mse, 2)),
+                ],
+                legend: Some(LegendPosition::UpperLeft),
+            });
+        }
+    }
+    let (nx, ny) = cases
+        .first()
+        .map(|c| c.options.mesh.counts())
+        .unwrap_or((0, 0));
+    let figure = Figure {
+        width: 1000,
+        height: 380 * fits.len() as u32 + 140,
+        caption: title.into(),
+        grid: (fits.len(), 2),
+        panels,
+        footer: vec![
+            format!(
+                "Least squares in p̄/E* over {} FE points (AR ∈ {:?}, τ_max ∈ {:?} MPa, mesh {nx}×{ny}); solid: ours, dashed: paper Table 1.",
+                samples.len(),
+                ars,
+                s.fe.tau_max_mpa.iter().map(|t| t.get()).collect::<Vec<_>>()
+            ),
+            notes.last().cloned().unwrap_or_default(),
+        ],
+        font_px: 16,
+    };
+    Ok((vec![coefficients, quality], figure, notes))
+}
