@@ -328,3 +328,47 @@ fn reproduce_with_one_bad_spec_writes_nothing() {
         "no figure of the good spec either"
     );
 }
+
+/// `wavy solve` with friction: one CSV row per converged step up to the target a/λ, and bad
+/// friction flags rejected with exit 2, naming the flag, the value and the range.
+#[test]
+fn solve_with_friction_prints_the_curve_and_rejects_bad_flags() {
+    let o = wavy(
+        &[
+            "solve",
+            "--ar",
+            "0.1",
+            "--tau-max-mpa",
+            "0.05",
+            "--mu",
+            "0.5",
+            "--mesh",
+            "16",
+            "--until-a-over-lambda",
+            "0.2",
+        ],
+        here(),
+    );
+    let rows = eval_rows(&o);
+    assert!(rows.len() >= 3, "{} rows", rows.len());
+    assert!(rows.last().unwrap().0 >= 0.2);
+    assert!(rows.windows(2).all(|w| w[1].1 > w[0].1));
+    for (flag, value, message) in [
+        ("--mu", "-1", "--mu = -1 is out of range; allowed: >= 0"),
+        (
+            "--tau-max-mpa",
+            "-0.1",
+            "--tau-max-mpa = -0.1 is out of range; allowed: >= 0",
+        ),
+        (
+            "--estar-mpa",
+            "0",
+            "--estar-mpa = 0 is out of range; allowed: > 0",
+        ),
+    ] {
+        let o = wavy(&["solve", "--ar", "0.1", flag, value], here());
+        assert_eq!(o.status.code(), Some(2), "{flag}: {}", stderr(&o));
+        assert!(stderr(&o).contains(message), "{}", stderr(&o));
+        assert!(stdout(&o).is_empty());
+    }
+}

@@ -81,3 +81,76 @@ fn estar_matches_closed_form() {
     // incompressible limit E* → 4G
     assert!((estar_over_g(1e12) - 4.0).abs() < 1e-9);
 }
+
+/// τ_max = 0 (or μ = 0) is frictionless: the interface law says so and no friction machinery
+/// (history, non-symmetric tangent) is built, so the curve is bitwise the frictionless one.
+#[test]
+fn zero_shear_strength_builds_no_friction() {
+    assert_eq!(
+        Interface::coulomb_orowan(1.0, 0.0, 0.005),
+        Interface::Frictionless
+    );
+    assert_eq!(
+        Interface::coulomb_orowan(0.0, 0.1, 0.005),
+        Interface::Frictionless
+    );
+    let opts = SolveOptions {
+        mesh: MeshLevel::Elements { nx: 16, ny: 8 },
+        until_a_over_lambda: 0.3,
+        ..Default::default()
+    };
+    let pb = |interface| LayerProblem {
+        aspect_ratio: 0.1,
+        interface,
+        ..Default::default()
+    };
+    let m = build_model(&pb(Interface::coulomb_orowan(1.0, 0.0, 0.005)), &opts);
+    assert!(m.is_potential() && m.elastic_slip_limit().is_none());
+    assert!(m.initial_state().slip.is_empty());
+    let a = solve_curve(
+        &pb(Interface::coulomb_orowan(1.0, 0.0, 0.005)),
+        &opts,
+        &mut |_| {},
+    );
+    let b = solve_curve(&pb(Interface::Frictionless), &opts, &mut |_| {});
+    assert_eq!(a.unwrap().points, b.unwrap().points);
+}
+
+#[test]
+fn invalid_friction_inputs_name_the_field() {
+    for (law, field) in [
+        (
+            CoulombOrowan {
+                friction_coefficient: -1.0,
+                tau_max_over_estar: 0.1,
+                elastic_slip_over_element: 0.005,
+            },
+            "friction_coefficient",
+        ),
+        (
+            CoulombOrowan {
+                friction_coefficient: 1.0,
+                tau_max_over_estar: f64::NAN,
+                elastic_slip_over_element: 0.005,
+            },
+            "tau_max_over_estar",
+        ),
+        (
+            CoulombOrowan {
+                friction_coefficient: 1.0,
+                tau_max_over_estar: 0.1,
+                elastic_slip_over_element: 0.0,
+            },
+            "elastic_slip_over_element",
+        ),
+    ] {
+        let pb = LayerProblem {
+            interface: Interface::CoulombOrowan(law),
+            ..Default::default()
+        };
+        match err(pb, SolveOptions::default()) {
+            SolveError::InvalidInput { field: f, .. } => assert_eq!(f, field),
+            e => panic!("unexpected {e}"),
+        }
+    }
+}
