@@ -539,16 +539,46 @@ pub(crate) fn trace(
         let mut cuts = 0;
         let mut evals = 0;
         let mut illinois_side = 0i32;
-        let fast = if opts.bordered_edge_solve {
-            predictor(model, &cur, prev.as_ref(), dd_guess, opts.tangent_predictor).and_then(
-                |mut st| {
-                    let it = equilibrate(model, &mut st, opts, Some(k), Some(tol)).ok()?;
-                    let g = gap_k(model, &st);
-                    (g.abs() <= tol && st.d > cur.d).then_some((st, it))
-                },
-            )
-        } else {
+        let mut bordered = |model: &mut Model, base: &State, base_prev: Option<&State>, dd| {
+            predictor(model, base, base_prev, dd, opts.tangent_predictor).and_then(|mut st| {
+                let it = equilibrate(model, &mut st, opts, Some(k), Some(tol)).ok()?;
+                let g = gap_k(model, &st);
+                (g.abs() <= tol && st.d > cur.d).then_some((st, it))
+            })
+        };
+        let fast = if !opts.bordered_edge_solve {
             None
+        } else if model.is_potential() {
+            bordered(model, &cur, prev.as_ref(), dd_guess)
+        } else {
+            // With friction the step is path dependent: when the event cannot be reached in
+            // one increment, advance by converged, committed sub-steps (half the trial
+            // increment, the target node held free) and retry from there.
+            let mut base = cur.clone();
+            let mut base_prev = prev.clone();
+            let mut dd = dd_guess;
+            let mut spent = 0;
+            let mut out = None;
+            for _ in 0..=opts.max_step_cuts {
+                if let Some((st, it)) = bordered(model, &base, base_prev.as_ref(), dd) {
+                    out = Some((st, it + spent));
+                    break;
+                }
+                dd *= 0.5;
+                let sub = predictor(model, &base, base_prev.as_ref(), dd, opts.tangent_predictor)
+                    .and_then(|mut st| {
+                        let it = equilibrate(model, &mut st, opts, Some(k), None).ok()?;
+                        Some((st, it))
+                    });
+                if let Some((mut st, it)) = sub {
+                    spent += it;
+                    if gap_k(model, &st) > tol {
+                        model.commit_slip(&mut st);
+                        base_prev = Some(std::mem::replace(&mut base, st));
+                    }
+                }
+            }
+            out
         };
         let found = loop {
             if let Some((st, it)) = fast.clone() {
