@@ -539,7 +539,7 @@ pub(crate) fn trace(
         let mut cuts = 0;
         let mut evals = 0;
         let mut illinois_side = 0i32;
-        let mut bordered = |model: &mut Model, base: &State, base_prev: Option<&State>, dd| {
+        let bordered = |model: &mut Model, base: &State, base_prev: Option<&State>, dd| {
             predictor(model, base, base_prev, dd, opts.tangent_predictor).and_then(|mut st| {
                 let it = equilibrate(model, &mut st, opts, Some(k), Some(tol)).ok()?;
                 let g = gap_k(model, &st);

@@ -214,7 +214,7 @@ pub(super) fn run(
     if let (Some(fe), Some(case)) = (&s.fe, cases.first()) {
         let (nx, ny) = case.options.mesh.counts();
         footer.push(format!(
-            "FE (ours): {:?} kinematics, neo-Hookean κ/G = {}, h/λ = {}, E* = {} MPa, mesh {nx}×{ny}; FE only for τ_max ∈ {:?} MPa.",
+            "FE (ours): {:?} kinematics, neo-Hookean κ/G = {}, h/λ = {}, E* = {} MPa, mesh {nx}×{ny}; FE curves for τ_max ∈ {:?} MPa.",
             case.problem.kinematics,
             fe.kappa_over_g.get(),
             fe.thickness_over_lambda.get(),
