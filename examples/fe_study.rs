@@ -1,7 +1,7 @@
 //! Mesh-convergence study (development tool): `cargo run --release --example fe_study`
 //! with environment variables AR, LEVELS (nx list, e.g. "32,64,128"), NY_OVER_NX,
 //! PEAK (grading peak_ratio), FIRST (first_layer_over_dx), RULE (fraction|power|periodic), KIN (finite|linear),
-//! DUMP (print the curves), PHI_CALIB (calibrate `DISCRETE_EDGE_FRACTION` instead).
+//! DUMP (print the curves), PRED (tangent|extrap), PHI_CALIB (calibrate `DISCRETE_EDGE_FRACTION` instead).
 use std::time::Instant;
 use wavy::fe::*;
 
@@ -70,6 +70,7 @@ fn main() {
         "periodic" => EdgeRule::PeriodicGap,
         _ => EdgeRule::default(),
     };
+    opts.tangent_predictor = env("PRED", "tangent") == "tangent";
     if std::env::var_os("PHI_CALIB").is_some() {
         calibrate(&levels, ny_over_nx, &opts);
         return;

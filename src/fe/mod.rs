@@ -19,7 +19,7 @@
 //! * [`solver`]: Newton with line search, displacement-controlled stepping from one
 //!   contact-edge event to the next (the load at which the next contact-face node
 //!   touches, found by a bordered Newton solve with `d` as unknown, secant fallback),
-//!   step cutting, contact-edge location; [`linsys`]: sparse Cholesky/LU through faer;
+//!   step cutting, contact-edge location; [`linsys`]: sparse Cholesky (`L B Lᵀ`, LU) through faer;
 //! * [`convergence`]: interpolation of curves at fixed `a/λ` and the mesh-convergence
 //!   (Richardson) table.
 //!
@@ -189,6 +189,12 @@ pub struct SolveOptions {
     pub max_newton_iterations: usize,
     /// Maximum line-search halvings.
     pub max_line_search: usize,
+    /// Maximum line-search halvings of the bordered edge solve. A bordered step that
+    /// needs more is a poor start (the secant fallback takes over). Measured at
+    /// AR = 0.3 (64×32): the bordered solve fails 11 times per curve, at iterations
+    /// 1–3, each after all its halvings; 8 instead of 40 halvings saves 6 % of the
+    /// curve's time with identical results.
+    pub max_edge_line_search: usize,
     /// Edge search: relative gap tolerance (w.r.t. the target node's initial gap).
     pub edge_gap_rtol: f64,
     /// Edge search: solve for the event load with the bordered Newton method (`d` as
@@ -229,6 +235,7 @@ impl Default for SolveOptions {
             max_steps: 2000,
             max_newton_iterations: 30,
             max_line_search: 40,
+            max_edge_line_search: 8,
             max_active_set_updates: 40,
             edge_gap_rtol: 1e-6,
             max_edge_iterations: 60,

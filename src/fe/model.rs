@@ -290,6 +290,10 @@ impl Model {
         for e in 0..self.mesh.quads.len() {
             let q = self.mesh.quads[e];
             let (en, g, hess) = match self.kin {
+                Kinematics::Finite if !with_matrix => {
+                    let (en, g) = element::gradient(&self.refs[e], &self.mat, &self.elem_x(st, e))?;
+                    (en, g, [[0.0; 8]; 8])
+                }
                 Kinematics::Finite => {
                     let t = element::tangent(&self.refs[e], &self.mat, &self.elem_x(st, e))?;
                     (t.energy, t.grad, t.hess)

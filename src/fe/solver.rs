@@ -1,8 +1,11 @@
 //! Newton's method with line search, the contact active-set loop and adaptive load
 //! stepping with step cutting.
 //!
-//! * Newton: consistent tangent of the reduced problem, sparse Cholesky (LU if the
-//!   tangent is not positive definite; symbolic factorisations reused), backtracking line search on the energy `Π` (Armijo,
+//! * Newton: consistent tangent of the reduced problem, sparse Cholesky (symmetric
+//!   indefinite `L B Lᵀ` if the tangent is not positive definite, see
+//!   [`super::linsys`]; symbolic factorisations reused; in the bordered edge solve,
+//!   after a step that had to be cut, a diagonally shifted Cholesky instead, which
+//!   gives a descent direction), backtracking line search on the energy `Π` (Armijo,
 //!   `c = 10⁻⁴`); if the Newton direction is not a descent direction the residual norm
 //!   is used instead. Inverted trial configurations (`J ≤ 0`) have `Π = +∞` and are
 //!   backtracked. Convergence: `‖r‖∞ ≤ rtol · f_e + atol`, `f_e` the largest
@@ -107,13 +110,14 @@ pub(crate) fn newton(
         if it == opts.max_newton_iterations || !res.is_finite() {
             break;
         }
-        let mut dq: Vec<f64> = f.resid.iter().map(|r| -r).collect();
-        if let Err(e) = model.sys.solve_symmetric_in_place(&mut dq) {
+        let mut rhs = vec![f.resid.iter().map(|r| -r).collect::<Vec<f64>>()];
+        if let Err(e) = model.sys.solve_symmetric_multi(&mut rhs) {
             return Err(StepFail::Linear {
                 iteration: it,
                 message: e.to_string(),
             });
         }
+        let dq = rhs.pop().expect("one right-hand side");
         if inf_norm(&dq) <= opts.increment_atol {
             // correction below the round-off of the positions: converged
             *st = model.updated(st, &dq, 1.0);
@@ -184,6 +188,7 @@ pub(crate) fn newton_edge(
     let node = model.mesh.bottom[k];
     let mut last_res = f64::NAN;
     let mut kscale = 0.0;
+    let mut backtracked = false;
     for it in 0..=opts.max_newton_iterations {
         let Some(f) = model.assemble(st, true) else {
             return Err(StepFail::Inverted {
@@ -214,7 +219,14 @@ pub(crate) fn newton_edge(
             f.resid.iter().map(|r| -r).collect::<Vec<f64>>(),
             f.dresid_dd.iter().map(|r| -r).collect::<Vec<f64>>(),
         ];
-        if let Err(e) = model.sys.solve_symmetric_multi(&mut rhs) {
+        // exact Newton step; after a step that had to be cut, the shifted (descent)
+        // matrix where the tangent is indefinite
+        let solved = if backtracked {
+            model.sys.solve_descent_multi(&mut rhs).map(|_| ())
+        } else {
+            model.sys.solve_symmetric_multi(&mut rhs)
+        };
+        if let Err(e) = solved {
             return Err(StepFail::Linear {
                 iteration: it,
                 message: e.to_string(),
@@ -234,7 +246,7 @@ pub(crate) fn newton_edge(
         let dq: Vec<f64> = z1.iter().zip(z2).map(|(a, b)| a + b * dd).collect();
         let mut alpha = 1.0;
         let mut accepted = None;
-        for _ in 0..opts.max_line_search {
+        for _ in 0..opts.max_edge_line_search {
             let mut trial = st.clone();
             trial.d += alpha * dd;
             model.enforce_constraints(&mut trial);
@@ -249,6 +261,7 @@ pub(crate) fn newton_edge(
             }
             alpha *= 0.5;
         }
+        backtracked = alpha < 1.0;
         match accepted {
             Some(t) => *st = t,
             None => {
