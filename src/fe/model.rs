@@ -78,6 +78,10 @@ pub struct Model {
     role: Vec<Role>,
     /// Sparse tangent.
     pub sys: SparseSystem,
+    /// The last state assembled and its forces: an assembly without the matrix of the
+    /// same state returns them (Newton's convergence check after a line search, the
+    /// active-set check after a converged solve, the measurement).
+    cache: Option<(State, Forces)>,
 }
 
 type SlotMap = Vec<[Option<[f64; 2]>; 2]>;
@@ -151,6 +155,7 @@ impl Model {
             k_lin,
             role,
             sys,
+            cache: None,
         }
     }
 
@@ -278,6 +283,13 @@ impl Model {
     /// Assemble energy, gradient, reduced residual and (if `with_matrix`) the reduced
     /// tangent into `self.sys`. `None` if any element is inverted.
     pub fn assemble(&mut self, st: &State, with_matrix: bool) -> Option<Forces> {
+        if !with_matrix {
+            if let Some((c, f)) = &self.cache {
+                if c.d == st.d && c.active == st.active && c.x == st.x {
+                    return Some(f.clone());
+                }
+            }
+        }
         let nn = self.mesh.nodes.len();
         let map = self.slot_map(st);
         let mut grad = vec![0.0; 2 * nn];
@@ -368,13 +380,15 @@ impl Model {
                 }
             }
         }
-        Some(Forces {
+        let forces = Forces {
             energy,
             grad,
             resid,
             dresid_dd,
             force_scale,
-        })
+        };
+        self.cache = Some((st.clone(), forces.clone()));
+        Some(forces)
     }
 
     /// Apply the Newton update `α δ` (slot-wise) to `base`. Sliding nodes move in `x`

@@ -94,7 +94,9 @@ pub(crate) fn newton(
 ) -> Result<usize, StepFail> {
     let mut last_res = f64::NAN;
     for it in 0..=opts.max_newton_iterations {
-        let Some(f) = model.assemble(st, true) else {
+        // convergence check on the forces alone (cached after the line search), the
+        // matrix only when another iteration follows
+        let Some(f) = model.assemble(st, false) else {
             return Err(StepFail::Inverted {
                 iteration: it,
                 residual: last_res,
@@ -110,6 +112,9 @@ pub(crate) fn newton(
         if it == opts.max_newton_iterations || !res.is_finite() {
             break;
         }
+        let f = model
+            .assemble(st, true)
+            .expect("state assembled above is not inverted");
         let mut rhs = vec![f.resid.iter().map(|r| -r).collect::<Vec<f64>>()];
         if let Err(e) = model.sys.solve_symmetric_multi(&mut rhs) {
             return Err(StepFail::Linear {
@@ -135,7 +140,9 @@ pub(crate) fn newton(
         for _ in 0..opts.max_line_search {
             let trial = model.updated(st, &dq, alpha);
             if slope < 0.0 {
-                if let Some(e) = model.energy(&trial) {
+                // energy and forces: the forces of the accepted state are cached for
+                // the next convergence check
+                if let Some(e) = model.assemble(&trial, false).map(|f| f.energy) {
                     if e <= e0 + 1e-4 * alpha * slope + 1e-13 * e0.abs() {
                         accepted = Some(trial);
                         break;
@@ -190,7 +197,9 @@ pub(crate) fn newton_edge(
     let mut kscale = 0.0;
     let mut backtracked = false;
     for it in 0..=opts.max_newton_iterations {
-        let Some(f) = model.assemble(st, true) else {
+        // convergence check on the forces alone (cached after the line search), the
+        // matrix only when another iteration follows
+        let Some(f) = model.assemble(st, false) else {
             return Err(StepFail::Inverted {
                 iteration: it,
                 residual: last_res,
@@ -198,10 +207,6 @@ pub(crate) fn newton_edge(
         };
         let (c, dc) = model.edge_constraint(st, k);
         let res = inf_norm(&f.resid);
-        if it == 0 {
-            kscale = inf_norm(&f.dresid_dd);
-        }
-        let merit = res + kscale * c.abs();
         last_res = res;
         let atol = opts.residual_atol * (model.mat.g + model.mat.kappa);
         let gtol = if rtol > opts.residual_rtol {
@@ -212,7 +217,17 @@ pub(crate) fn newton_edge(
         if res <= rtol * f.force_scale + atol && c.abs() <= gtol {
             return Ok(it);
         }
-        if it == opts.max_newton_iterations || !merit.is_finite() {
+        if it == opts.max_newton_iterations || !res.is_finite() || !c.is_finite() {
+            break;
+        }
+        let f = model
+            .assemble(st, true)
+            .expect("state assembled above is not inverted");
+        if it == 0 {
+            kscale = inf_norm(&f.dresid_dd);
+        }
+        let merit = res + kscale * c.abs();
+        if !merit.is_finite() {
             break;
         }
         let mut rhs = vec![
