@@ -1,13 +1,19 @@
 //! Time per full load curve (first contact to a/λ = 0.45) at each mesh level, finite
-//! kinematics, AR = 0.1, κ/G = 1000, and the linear curve at the default mesh.
+//! kinematics, AR = 0.1 and AR = 0.3, κ/G = 1000, and the linear curve at the default
+//! mesh (AR = 0.1). Before the timings, the peak memory of one curve per AR and mesh
+//! level is printed: each curve runs in a fresh child process (this bench binary
+//! re-invoked with `WAVY_BENCH_CURVE=AR,level`), which reports its `VmHWM` from
+//! `/proc/self/status`.
 //! Run: `cargo bench --bench solver` (criterion reports the median of the samples).
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use wavy::fe::*;
 
-fn curve(kin: Kinematics, mesh: MeshLevel) -> usize {
+const CHILD: &str = "WAVY_BENCH_CURVE";
+
+fn curve(ar: f64, kin: Kinematics, mesh: MeshLevel) -> usize {
     let pb = LayerProblem {
-        aspect_ratio: 0.1,
+        aspect_ratio: ar,
         kinematics: kin,
         ..Default::default()
     };
@@ -21,19 +27,70 @@ fn curve(kin: Kinematics, mesh: MeshLevel) -> usize {
         .len()
 }
 
+fn levels() -> [(&'static str, MeshLevel); 3] {
+    [
+        ("coarse", MeshLevel::Coarse),
+        ("default", MeshLevel::Default),
+        ("fine", MeshLevel::Fine),
+    ]
+}
+
+/// Peak resident memory of this process (`VmHWM`, kB), if `/proc` has it.
+fn peak_memory_kb() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
+/// Child mode: one curve, then print `VmHWM` and exit.
+fn child(spec: &str) -> ! {
+    let (ar, name) = spec.split_once(',').expect("AR,level");
+    let ar: f64 = ar.parse().expect("AR");
+    let level = levels()
+        .into_iter()
+        .find(|(n, _)| *n == name)
+        .expect("level")
+        .1;
+    curve(ar, Kinematics::Finite, level);
+    println!("{}", peak_memory_kb().unwrap_or(0));
+    std::process::exit(0)
+}
+
+fn print_peak_memory() {
+    let exe = std::env::current_exe().expect("bench executable");
+    for ar in ["0.1", "0.3"] {
+        for (name, _) in levels() {
+            let out = std::process::Command::new(&exe)
+                .env(CHILD, format!("{ar},{name}"))
+                .output()
+                .expect("child curve");
+            let kb = String::from_utf8_lossy(&out.stdout).trim().to_string();
+            eprintln!("peak memory (VmHWM), finite, AR {ar}, {name} mesh: {kb} kB");
+        }
+    }
+}
+
 fn bench(c: &mut Criterion) {
+    if let Ok(spec) = std::env::var(CHILD) {
+        child(&spec);
+    }
+    print_peak_memory();
     let mut g = c.benchmark_group("curve_ar0.1");
     g.sample_size(10);
     g.bench_function("linear_default", |b| {
-        b.iter(|| black_box(curve(Kinematics::Linear, MeshLevel::Default)))
+        b.iter(|| black_box(curve(0.1, Kinematics::Linear, MeshLevel::Default)))
     });
-    for (name, level) in [
-        ("finite_coarse", MeshLevel::Coarse),
-        ("finite_default", MeshLevel::Default),
-        ("finite_fine", MeshLevel::Fine),
-    ] {
-        g.bench_function(name, |b| {
-            b.iter(|| black_box(curve(Kinematics::Finite, level)))
+    for (name, level) in levels() {
+        g.bench_function(format!("finite_{name}"), |b| {
+            b.iter(|| black_box(curve(0.1, Kinematics::Finite, level)))
+        });
+    }
+    g.finish();
+    let mut g = c.benchmark_group("curve_ar0.3");
+    g.sample_size(10);
+    for (name, level) in levels() {
+        g.bench_function(format!("finite_{name}"), |b| {
+            b.iter(|| black_box(curve(0.3, Kinematics::Finite, level)))
         });
     }
     g.finish();

@@ -1,29 +1,32 @@
-//! Mesh convergence (requirement (ii)), finite kinematics, κ/G = 1000, h = λ.
-//! `p̄/E*` is compared at fixed a/λ ∈ {0.1, 0.15, …, 0.45} (cubic interpolation of
-//! √p̄, `wavy::fe::p_at`). Reference: the Richardson-extrapolated value itself (no
-//! external data exists for this finite-strain problem).
+//! Mesh convergence (requirement (ii) of issue #3), finite kinematics, κ/G = 1000,
+//! h = λ, at AR = 0.1 and AR = 0.3: coarse/default/fine = 32×16/64×32/128×64 (each
+//! level twice as fine as the previous, same grading). `p̄/E*` is compared at fixed
+//! a/λ ∈ {0.1, 0.15, …, 0.45} (cubic interpolation of √p̄, `wavy::fe::p_at`).
+//! Reference: the Richardson-extrapolated value itself (no external data exists for
+//! this finite-strain problem); the thresholds are the targets of issue #3: default-mesh
+//! error estimate ≤ 0.5 % at every a/λ in [0.1, 0.45], and an observed order of at
+//! least 1, the formal order of the contact-edge location (`wavy::fe::convergence`).
 //!
 //! Measured (2026-11-22, `cargo test --release --test fe_convergence -- --nocapture`):
-//! * AR = 0.1, coarse/default/fine = 32×16/64×32/128×64: observed orders 2.1–2.6 for
-//!   a/λ ∈ [0.15, 0.40]; Richardson error of the default mesh 0.08–0.41 % for
-//!   a/λ ≤ 0.35, 0.53 % at 0.40 and 0.89 % at 0.45 (the 0.5 % target is missed there).
-//! * AR = 0.3: the coarse mesh fails (Newton stalls near a/λ ≈ 0.3), so only the
-//!   default and fine meshes are compared: they differ by 0.45–0.89 %, i.e. an
-//!   estimated default-mesh error of 0.6–1.2 % for order 2 (target 0.5 % missed).
+//! * AR = 0.1: global observed order 1.37; Richardson error of the default mesh
+//!   0.006–0.12 % (largest at a/λ = 0.10).
+//! * AR = 0.3: global observed order 1.6; error 0.006–0.15 % (largest at a/λ = 0.45).
 use wavy::fe::*;
 
 fn a_values() -> Vec<f64> {
     (0..8).map(|i| 0.1 + 0.05 * i as f64).collect()
 }
 
-#[test]
-fn mesh_convergence_ar_0_1_three_levels() {
+fn check(aspect_ratio: f64) {
     let pb = LayerProblem {
-        aspect_ratio: 0.1,
+        aspect_ratio,
         ..Default::default()
     };
     let t = mesh_convergence(&pb, &SolveOptions::default(), &a_values()).expect("three curves");
-    eprintln!("AR 0.1: global observed order {:.2}", t.observed_order);
+    eprintln!(
+        "AR {aspect_ratio}: global observed order {:.2}",
+        t.observed_order
+    );
     for r in &t.rows {
         eprintln!(
             "  a {:.2}  p/E* {:.6e} {:.6e} {:.6e}  order {:.2}  default err {:.3}%",
@@ -35,20 +38,16 @@ fn mesh_convergence_ar_0_1_three_levels() {
             100.0 * r.default_relative_error
         );
     }
+    assert_eq!(t.rows.len(), 8, "every a/λ inside all three curves");
     assert!(
-        (1.5..3.5).contains(&t.observed_order),
-        "observed order {}",
+        t.observed_order >= 1.0,
+        "AR {aspect_ratio}: observed order {}",
         t.observed_order
     );
     for r in &t.rows {
-        let tol = if r.a_over_lambda <= 0.35 + 1e-9 {
-            0.005
-        } else {
-            0.01
-        };
         assert!(
-            r.default_relative_error <= tol,
-            "a {}: Richardson error estimate {} > {tol}",
+            r.default_relative_error <= 0.005,
+            "AR {aspect_ratio}, a {}: Richardson error estimate {} > 0.5 %",
             r.a_over_lambda,
             r.default_relative_error
         );
@@ -56,27 +55,11 @@ fn mesh_convergence_ar_0_1_three_levels() {
 }
 
 #[test]
-fn mesh_convergence_ar_0_3_default_vs_fine() {
-    let pb = LayerProblem {
-        aspect_ratio: 0.3,
-        ..Default::default()
-    };
-    let run = |mesh| {
-        let opts = SolveOptions {
-            mesh,
-            ..Default::default()
-        };
-        solve_curve(&pb, &opts, &mut |_| {}).expect("AR 0.3 reaches a/λ = 0.45")
-    };
-    let d = run(MeshLevel::Default);
-    let f = run(MeshLevel::Fine);
-    for a in a_values() {
-        let (pd, pf) = (d.p_at(a).unwrap(), f.p_at(a).unwrap());
-        let diff = pd / pf - 1.0;
-        eprintln!(
-            "AR 0.3 a {a:.2}: default {pd:.6e} fine {pf:.6e} diff {:.3}%",
-            100.0 * diff
-        );
-        assert!(diff.abs() <= 0.01, "a {a}: default vs fine {diff}");
-    }
+fn mesh_convergence_ar_0_1_three_levels() {
+    check(0.1);
+}
+
+#[test]
+fn mesh_convergence_ar_0_3_three_levels() {
+    check(0.3);
 }

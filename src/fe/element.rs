@@ -156,7 +156,65 @@ pub fn energy(q: &QuadRef, mat: &NeoHooke, x: &[[f64; 2]; 4]) -> Option<f64> {
     Some(e + 0.5 * mat.kappa * q.area * r * r)
 }
 
+/// Element energy and gradient (no Hessian); `None` if the element is inverted.
+pub fn gradient(q: &QuadRef, mat: &NeoHooke, x: &[[f64; 2]; 4]) -> Option<(f64, [f64; 8])> {
+    if !corners_ok(x) {
+        return None;
+    }
+    let mut energy = 0.0;
+    let mut grad = [0.0; 8];
+    for g in 0..4 {
+        let f = q.deformation_gradient(g, x);
+        let k = mat.iso_kinematics(&f)?;
+        let w = q.wdet[g];
+        energy += w * k.w;
+        // P = G a (F − (I₁/3) F⁻ᵀ)
+        let c = k.i1 / 3.0;
+        let wga = w * k.ga;
+        let p = [
+            [
+                wga * (f[0][0] - c * k.fit[0][0]),
+                wga * (f[0][1] - c * k.fit[0][1]),
+            ],
+            [
+                wga * (f[1][0] - c * k.fit[1][0]),
+                wga * (f[1][1] - c * k.fit[1][1]),
+            ],
+        ];
+        for (a, d) in q.dn[g].iter().enumerate() {
+            grad[2 * a] += p[0][0] * d[0] + p[0][1] * d[1];
+            grad[2 * a + 1] += p[1][0] * d[0] + p[1][1] * d[1];
+        }
+    }
+    let v = shoelace(x);
+    if v <= 0.0 {
+        return None;
+    }
+    let r = v / q.area - 1.0;
+    energy += 0.5 * mat.kappa * q.area * r * r;
+    let kr = mat.kappa * r;
+    for k in 0..4 {
+        let n = (k + 1) % 4;
+        let p = (k + 3) % 4;
+        grad[2 * k] += kr * 0.5 * (x[n][1] - x[p][1]);
+        grad[2 * k + 1] += kr * 0.5 * (x[p][0] - x[n][0]);
+    }
+    Some((energy, grad))
+}
+
 /// Element energy, gradient and Hessian; `None` if the element is inverted.
+///
+/// Isochoric part in closed form per Gauss point (weight `w`): with the node vectors
+/// `f_a = F ∇N_a`, `h_a = F⁻ᵀ ∇N_a` and `n_ab = ∇N_a · ∇N_b`, contracting the tangent
+/// `A_iJkL` of [`crate::fe::material`] with `∇N_a`, `∇N_b` gives
+///
+/// ```text
+/// g_ai  = w G a (f_ai − (I₁/3) h_ai)
+/// K_aibk = w G a [ δ_ik n_ab − (2/3)(f_ai h_bk + h_ai f_bk)
+///                  + (2/9) I₁ h_ai h_bk + (I₁/3) h_bi h_ak ]
+/// ```
+///
+/// (`a = J^(−2/3)`); only the blocks `b ≥ a` are computed, the rest by symmetry.
 #[allow(non_snake_case)]
 pub fn tangent(q: &QuadRef, mat: &NeoHooke, x: &[[f64; 2]; 4]) -> Option<ElementTangent> {
     if !corners_ok(x) {
@@ -167,30 +225,45 @@ pub fn tangent(q: &QuadRef, mat: &NeoHooke, x: &[[f64; 2]; 4]) -> Option<Element
     let mut hess = [[0.0; 8]; 8];
     for g in 0..4 {
         let f = q.deformation_gradient(g, x);
-        let resp = mat.iso_response(&f, true)?;
+        let k = mat.iso_kinematics(&f)?;
         let w = q.wdet[g];
-        energy += w * resp.w;
+        energy += w * k.w;
         let dn = &q.dn[g];
+        let mut fa = [[0.0; 2]; 4];
+        let mut ha = [[0.0; 2]; 4];
         for a in 0..4 {
             for i in 0..2 {
-                grad[2 * a + i] += w * (resp.p[i][0] * dn[a][0] + resp.p[i][1] * dn[a][1]);
+                fa[a][i] = f[i][0] * dn[a][0] + f[i][1] * dn[a][1];
+                ha[a][i] = k.fit[i][0] * dn[a][0] + k.fit[i][1] * dn[a][1];
             }
         }
-        // B_aiJ... : hess[a i][b k] = Σ_JL dN_a/dX_J A_iJkL dN_b/dX_L
+        let s = w * k.ga;
+        let c1 = k.i1 / 3.0;
+        let c2 = 2.0 / 9.0 * k.i1;
         for a in 0..4 {
             for i in 0..2 {
-                // t[k][L] = Σ_J dn[a][J] A[i][J][k][L]
-                let mut t = [[0.0; 2]; 2];
-                for (k, tk) in t.iter_mut().enumerate() {
-                    for (l, tkl) in tk.iter_mut().enumerate() {
-                        *tkl = dn[a][0] * resp.a[i][0][k][l] + dn[a][1] * resp.a[i][1][k][l];
+                grad[2 * a + i] += s * (fa[a][i] - c1 * ha[a][i]);
+            }
+            for b in a..4 {
+                let nab = dn[a][0] * dn[b][0] + dn[a][1] * dn[b][1];
+                for i in 0..2 {
+                    for kk in 0..2 {
+                        let mut v = -2.0 / 3.0 * (fa[a][i] * ha[b][kk] + ha[a][i] * fa[b][kk])
+                            + c2 * ha[a][i] * ha[b][kk]
+                            + c1 * ha[b][i] * ha[a][kk];
+                        if i == kk {
+                            v += nab;
+                        }
+                        hess[2 * a + i][2 * b + kk] += s * v;
                     }
                 }
-                for b in 0..4 {
-                    for k in 0..2 {
-                        hess[2 * a + i][2 * b + k] += w * (t[k][0] * dn[b][0] + t[k][1] * dn[b][1]);
-                    }
-                }
+            }
+        }
+    }
+    for r in 0..8 {
+        for c in 0..r {
+            if c / 2 < r / 2 {
+                hess[r][c] = hess[c][r];
             }
         }
     }

@@ -5,9 +5,11 @@
 //! changes during a solve, so the symbolic factorisations (fill-reducing ordering,
 //! elimination structure) are computed once and reused for every numeric
 //! factorisation. The frictionless tangent is symmetric: it is factored by supernodal
-//! Cholesky, and by LU when Cholesky fails (the reduced Hessian need not be positive
-//! definite far from equilibrium). LU also serves the non-symmetric frictional tangent
-//! of the planned extension.
+//! Cholesky; when Cholesky fails (the reduced Hessian need not be positive definite
+//! away from equilibrium) by the symmetric-indefinite `L B Lᵀ` factorisation on the
+//! same symbolic structure, or, for descent directions, by Cholesky of a diagonally
+//! shifted matrix; LU is the last resort. LU also serves the non-symmetric frictional
+//! tangent.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::cholesky::{
@@ -30,8 +32,7 @@ pub enum LinSolveError {
     Numeric(String),
 }
 
-/// Work memory of the factorisation, kept across factorisations (a fresh allocation per
-/// factorisation measured 15 % of a friction curve in page faults).
+/// Work memory of a factorisation, kept across factorisations.
 struct Scratch {
     req: faer::dyn_stack::StackReq,
     buf: MemBuffer,
@@ -77,6 +78,9 @@ pub struct SparseSystem {
     lu_scratch: Option<Scratch>,
     symbolic_llt: Option<std::sync::Arc<SymbolicCholesky<usize>>>,
     llt_values: Vec<f64>,
+    lblt_subdiag: Vec<f64>,
+    lblt_perm: (Vec<usize>, Vec<usize>),
+    shifted: Vec<f64>,
 }
 
 impl SparseSystem {
@@ -132,6 +136,9 @@ impl SparseSystem {
             lu_scratch: None,
             symbolic_llt: None,
             llt_values: Vec::new(),
+            lblt_subdiag: Vec::new(),
+            lblt_perm: (Vec::new(), Vec::new()),
+            shifted: Vec::new(),
         }
     }
 
@@ -175,7 +182,10 @@ impl SparseSystem {
     /// and solve for every right-hand side; `false` if the matrix is not numerically
     /// positive definite. The default faer heuristic picks the simplicial variant for
     /// these 2D meshes, which measured about 3× slower, so supernodal is forced.
-    fn llt_solve(&mut self, rhs: &mut [Vec<f64>]) -> Result<bool, LinSolveError> {
+    ///
+    /// With `shift > 0` the matrix factored is `A + shift · diag(|A_ii|)` (see
+    /// [`Self::solve_descent_multi`]).
+    fn llt_solve(&mut self, shift: f64, rhs: &mut [Vec<f64>]) -> Result<bool, LinSolveError> {
         let sym = SymbolicSparseColMatRef::new_checked(
             self.n,
             self.n,
@@ -194,7 +204,18 @@ impl SparseSystem {
             self.symbolic_llt = Some(std::sync::Arc::new(s));
         }
         let symbolic = self.symbolic_llt.clone().expect("symbolic set above");
-        let mat = SparseColMatRef::new(sym, &self.values);
+        if shift > 0.0 {
+            self.shifted.clone_from(&self.values);
+            for &p in &self.diag_pos {
+                self.shifted[p] += shift * self.values[p].abs();
+            }
+        }
+        let values = if shift > 0.0 {
+            &self.shifted
+        } else {
+            &self.values
+        };
+        let mat = SparseColMatRef::new(sym, values);
         let par = Par::Seq;
         let mut buf =
             MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()));
@@ -229,16 +250,89 @@ impl SparseSystem {
         }
     }
 
-    /// Solve `A xⱼ = bⱼ` in place for several right-hand sides with one factorisation:
-    /// Cholesky first if `symmetric` (falling back to LU), LU otherwise.
-    pub fn solve_multi(
-        &mut self,
-        rhs: &mut [Vec<f64>],
-        symmetric: bool,
-    ) -> Result<(), LinSolveError> {
-        if symmetric && self.llt_solve(rhs)? {
+    /// Descent directions for a minimisation: solve `(A + σ D) xⱼ = bⱼ`,
+    /// `D = diag(|A_ii|)`, with the smallest `σ ∈ {0, 10⁻⁴, 10⁻², 1}` for which the
+    /// Cholesky factorisation succeeds (the exact solve of
+    /// [`Self::solve_symmetric_multi`] if none does). Where `A` is positive definite
+    /// this is the Newton step; where it is not, the shifted matrix is, and the step is
+    /// a descent direction of the energy. Returns `σ`.
+    pub fn solve_descent_multi(&mut self, rhs: &mut [Vec<f64>]) -> Result<f64, LinSolveError> {
+        for shift in [0.0, 1e-4, 1e-2, 1.0] {
+            if self.llt_solve(shift, rhs)? {
+                return Ok(shift);
+            }
+        }
+        self.solve_symmetric_multi(rhs)?;
+        Ok(0.0)
+    }
+
+    /// Solve `A xⱼ = bⱼ` in place for several right-hand sides of a symmetric matrix
+    /// (one factorisation; Cholesky, falling back to `L B Lᵀ`, then LU).
+    pub fn solve_symmetric_multi(&mut self, rhs: &mut [Vec<f64>]) -> Result<(), LinSolveError> {
+        if self.llt_solve(0.0, rhs)? || self.lblt_solve(rhs)? {
             return Ok(());
         }
+        self.lu_solve_multi(rhs)
+    }
+
+    /// Sparse symmetric-indefinite `L B Lᵀ` factorisation (Bunch–Kaufman pivoting inside
+    /// the supernodes, on the Cholesky symbolic structure) and solve; `false` if the
+    /// solution is not finite. Used when Cholesky fails: the tangent of trial states
+    /// away from equilibrium can be indefinite; this gives the same Newton step as LU
+    /// at the cost of a Cholesky factorisation (measured: one sparse LU of these
+    /// matrices costs 5–10 Cholesky factorisations).
+    fn lblt_solve(&mut self, rhs: &mut [Vec<f64>]) -> Result<bool, LinSolveError> {
+        let sym = SymbolicSparseColMatRef::new_checked(
+            self.n,
+            self.n,
+            &self.col_ptr,
+            None,
+            &self.row_idx,
+        );
+        let symbolic = self.symbolic_llt.clone().expect("Cholesky tried first");
+        let mat = SparseColMatRef::new(sym, &self.values);
+        let par = Par::Seq;
+        self.lblt_subdiag.resize(self.n, 0.0);
+        self.lblt_perm.0.resize(self.n, 0);
+        self.lblt_perm.1.resize(self.n, 0);
+        let mut buf = MemBuffer::new(
+            symbolic.factorize_numeric_intranode_lblt_scratch::<f64>(par, Default::default()),
+        );
+        let lblt = symbolic.factorize_numeric_intranode_lblt(
+            &mut self.llt_values,
+            &mut self.lblt_subdiag,
+            &mut self.lblt_perm.0,
+            &mut self.lblt_perm.1,
+            mat,
+            Side::Lower,
+            par,
+            MemStack::new(&mut buf),
+            Default::default(),
+        );
+        let mut out: Vec<Vec<f64>> = rhs.to_vec();
+        let mut sbuf = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, par));
+        for x in out.iter_mut() {
+            let n = x.len();
+            lblt.solve_in_place_with_conj(
+                Conj::No,
+                MatMut::from_column_major_slice_mut(x, n, 1),
+                par,
+                MemStack::new(&mut sbuf),
+            );
+        }
+        if out.iter().all(|x| x.iter().all(|v| v.is_finite())) {
+            rhs.clone_from_slice(&out);
+            Ok(true)
+        } else {
+            Ok(false)
+        }
+    }
+
+    /// Sparse LU with partial pivoting (COLAMD ordering, computed once) for any square
+    /// matrix, in particular the non-symmetric frictional tangent; the factors' storage
+    /// and the work memory are reused between factorisations (fresh allocations measured
+    /// 15 % of a friction curve in page faults).
+    pub fn lu_solve_multi(&mut self, rhs: &mut [Vec<f64>]) -> Result<(), LinSolveError> {
         let sym = SymbolicSparseColMatRef::new_checked(
             self.n,
             self.n,

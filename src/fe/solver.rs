@@ -1,8 +1,11 @@
 //! Newton's method with line search, the contact active-set loop and adaptive load
 //! stepping with step cutting.
 //!
-//! * Newton: consistent tangent of the reduced problem, sparse Cholesky (LU if the
-//!   tangent is not positive definite; symbolic factorisations reused), backtracking line search on the energy `Π` (Armijo,
+//! * Newton: consistent tangent of the reduced problem, sparse Cholesky (symmetric
+//!   indefinite `L B Lᵀ` if the tangent is not positive definite, see
+//!   [`super::linsys`]; symbolic factorisations reused; in the bordered edge solve,
+//!   after a step that had to be cut, a diagonally shifted Cholesky instead, which
+//!   gives a descent direction), backtracking line search on the energy `Π` (Armijo,
 //!   `c = 10⁻⁴`); if the Newton direction is not a descent direction the residual norm
 //!   is used instead. Inverted trial configurations (`J ≤ 0`) have `Π = +∞` and are
 //!   backtracked. Convergence: `‖r‖∞ ≤ rtol · f_e + atol`, `f_e` the largest
@@ -23,7 +26,7 @@
 
 use super::error::{CurveFailure, SolveError};
 use super::model::{Model, State};
-use super::{Curve, CurvePoint, DeformedState, Kinematics, SolveOptions};
+use super::{Curve, CurvePoint, DeformedState, EdgeRule, Kinematics, SolveOptions};
 
 /// Why one attempt at a load step failed.
 #[derive(Debug, Clone)]
@@ -84,8 +87,11 @@ fn linear_solve(
     model: &mut Model,
     rhs: &mut [Vec<f64>],
 ) -> Result<(), super::linsys::LinSolveError> {
-    let symmetric = model.is_potential();
-    model.sys.solve_multi(rhs, symmetric)
+    if model.is_potential() {
+        model.sys.solve_symmetric_multi(rhs)
+    } else {
+        model.sys.lu_solve_multi(rhs)
+    }
 }
 
 fn l2_norm(v: &[f64]) -> f64 {
@@ -105,7 +111,9 @@ pub(crate) fn newton(
 ) -> Result<usize, StepFail> {
     let mut last_res = f64::NAN;
     for it in 0..=opts.max_newton_iterations {
-        let Some(f) = model.assemble(st, true) else {
+        // convergence check on the forces alone (cached after the line search), the
+        // matrix only when another iteration follows
+        let Some(f) = model.assemble(st, false) else {
             return Err(StepFail::Inverted {
                 iteration: it,
                 residual: last_res,
@@ -121,14 +129,17 @@ pub(crate) fn newton(
         if it == opts.max_newton_iterations || !res.is_finite() {
             break;
         }
-        let mut rhs = [f.resid.iter().map(|r| -r).collect::<Vec<f64>>()];
+        let f = model
+            .assemble(st, true)
+            .expect("state assembled above is not inverted");
+        let mut rhs = vec![f.resid.iter().map(|r| -r).collect::<Vec<f64>>()];
         if let Err(e) = linear_solve(model, &mut rhs) {
             return Err(StepFail::Linear {
                 iteration: it,
                 message: e.to_string(),
             });
         }
-        let [dq] = rhs;
+        let dq = rhs.pop().expect("one right-hand side");
         if inf_norm(&dq) <= opts.increment_atol {
             // correction below the round-off of the positions: converged
             *st = model.updated(st, &dq, 1.0);
@@ -147,7 +158,9 @@ pub(crate) fn newton(
         for _ in 0..opts.max_line_search {
             let trial = model.updated(st, &dq, alpha);
             if slope < 0.0 && model.is_potential() {
-                if let Some(e) = model.energy(&trial) {
+                // energy and forces: the forces of the accepted state are cached for
+                // the next convergence check
+                if let Some(e) = model.assemble(&trial, false).map(|f| f.energy) {
                     if e <= e0 + 1e-4 * alpha * slope + 1e-13 * e0.abs() {
                         accepted = Some(trial);
                         break;
@@ -200,8 +213,11 @@ pub(crate) fn newton_edge(
     let node = model.mesh.bottom[k];
     let mut last_res = f64::NAN;
     let mut kscale = 0.0;
+    let mut backtracked = false;
     for it in 0..=opts.max_newton_iterations {
-        let Some(f) = model.assemble(st, true) else {
+        // convergence check on the forces alone (cached after the line search), the
+        // matrix only when another iteration follows
+        let Some(f) = model.assemble(st, false) else {
             return Err(StepFail::Inverted {
                 iteration: it,
                 residual: last_res,
@@ -209,10 +225,6 @@ pub(crate) fn newton_edge(
         };
         let (c, dc) = model.edge_constraint(st, k);
         let res = inf_norm(&f.resid);
-        if it == 0 {
-            kscale = inf_norm(&f.dresid_dd);
-        }
-        let merit = res + kscale * c.abs();
         last_res = res;
         let atol = opts.residual_atol * (model.mat.g + model.mat.kappa);
         let gtol = if rtol > opts.residual_rtol {
@@ -223,14 +235,33 @@ pub(crate) fn newton_edge(
         if res <= rtol * f.force_scale + atol && c.abs() <= gtol {
             return Ok(it);
         }
-        if it == opts.max_newton_iterations || !merit.is_finite() {
+        if it == opts.max_newton_iterations || !res.is_finite() || !c.is_finite() {
+            break;
+        }
+        let f = model
+            .assemble(st, true)
+            .expect("state assembled above is not inverted");
+        if it == 0 {
+            kscale = inf_norm(&f.dresid_dd);
+        }
+        let merit = res + kscale * c.abs();
+        if !merit.is_finite() {
             break;
         }
         let mut rhs = vec![
             f.resid.iter().map(|r| -r).collect::<Vec<f64>>(),
             f.dresid_dd.iter().map(|r| -r).collect::<Vec<f64>>(),
         ];
-        if let Err(e) = linear_solve(model, &mut rhs) {
+        // exact Newton step; after a step that had to be cut, the shifted (descent)
+        // matrix where the (symmetric) tangent is indefinite
+        let solved = if !model.is_potential() {
+            model.sys.lu_solve_multi(&mut rhs)
+        } else if backtracked {
+            model.sys.solve_descent_multi(&mut rhs).map(|_| ())
+        } else {
+            model.sys.solve_symmetric_multi(&mut rhs)
+        };
+        if let Err(e) = solved {
             return Err(StepFail::Linear {
                 iteration: it,
                 message: e.to_string(),
@@ -250,7 +281,7 @@ pub(crate) fn newton_edge(
         let dq: Vec<f64> = z1.iter().zip(z2).map(|(a, b)| a + b * dd).collect();
         let mut alpha = 1.0;
         let mut accepted = None;
-        for _ in 0..opts.max_line_search {
+        for _ in 0..opts.max_edge_line_search {
             let mut trial = st.clone();
             trial.d += alpha * dd;
             model.enforce_constraints(&mut trial);
@@ -267,6 +298,7 @@ pub(crate) fn newton_edge(
             }
             alpha *= 0.5;
         }
+        backtracked = alpha < 1.0;
         match accepted {
             Some(t) => *st = t,
             None => {
@@ -343,20 +375,73 @@ pub(crate) fn equilibrate(
 }
 
 /// Contact half-width at an edge event on node `k` (rule documented at [`trace`]).
-fn edge_position(model: &Model, st: &State, k: usize) -> f64 {
+fn edge_position(model: &Model, st: &State, k: usize, rule: EdgeRule) -> f64 {
     let b = &model.mesh.bottom;
     let x = |i: usize| st.x[b[i]][0];
     let lo = x(k.saturating_sub(1));
     let hi = x(k);
+    if let EdgeRule::Fraction(phi) = rule {
+        return lo + phi * (hi - lo);
+    }
     if k + 2 < b.len() {
         let gaps = model.gaps(st);
         let (g1, g2) = (gaps[k + 1], gaps[k + 2]);
         if g1 > 0.0 && g2 > g1 {
-            let r = (g1 / g2).powf(2.0 / 3.0);
-            return ((x(k + 1) - r * x(k + 2)) / (1.0 - r)).clamp(lo, hi);
+            return match rule {
+                EdgeRule::GapPower => {
+                    let r = (g1 / g2).powf(2.0 / 3.0);
+                    ((x(k + 1) - r * x(k + 2)) / (1.0 - r)).clamp(lo, hi)
+                }
+                EdgeRule::PeriodicGap => periodic_gap_fit(x(k + 1), x(k + 2), g1 / g2, lo, hi),
+                EdgeRule::Fraction(_) => unreachable!("handled above"),
+            };
         }
     }
     0.5 * (lo + hi)
+}
+
+/// Gap shape of the periodic (Westergaard) contact beyond the edge `a`, up to a
+/// constant factor (units of λ, `a < x ≤ ½`):
+///
+/// ```text
+/// g'(x) ∝ cos πx √(sin²πx − sin²πa)
+/// G(x; a) = ½ [ s √(s² − c²) − c² ln((s + √(s² − c²))/c) ],  s = sin πx, c = sin πa
+/// ```
+///
+/// (`∝ (s − c)^{3/2}` near the edge). Exact in the linear limit.
+fn periodic_gap_shape(x: f64, a: f64) -> f64 {
+    let pi = std::f64::consts::PI;
+    let (s, c) = ((pi * x).sin(), (pi * a).sin());
+    if s <= c {
+        return 0.0;
+    }
+    if c <= 0.0 {
+        return 0.5 * s * s;
+    }
+    let r = (s * s - c * c).sqrt();
+    0.5 * (s * r - c * c * ((s + r) / c).ln())
+}
+
+/// The `a ∈ [lo, hi]` with `G(x₁; a)/G(x₂; a) = ratio` ([`periodic_gap_shape`]; the
+/// ratio decreases with `a`), clamped to the interval; bisection.
+fn periodic_gap_fit(x1: f64, x2: f64, ratio: f64, lo: f64, hi: f64) -> f64 {
+    let r = |a: f64| periodic_gap_shape(x1, a) / periodic_gap_shape(x2, a);
+    if r(lo) <= ratio {
+        return lo;
+    }
+    if r(hi) >= ratio {
+        return hi;
+    }
+    let (mut l, mut h) = (lo, hi);
+    for _ in 0..60 {
+        let m = 0.5 * (l + h);
+        if r(m) > ratio {
+            l = m;
+        } else {
+            h = m;
+        }
+    }
+    0.5 * (l + h)
 }
 
 /// Measured quantities of a converged state whose contact edge is node `edge`.
@@ -377,7 +462,7 @@ pub(crate) fn measure(
     let p_re = model.slab_reaction(&f.grad) / half / estar;
     (
         CurvePoint {
-            a_over_lambda: edge_position(model, st, edge),
+            a_over_lambda: edge_position(model, st, edge, EdgeRule::default()),
             p_over_estar: p_tr,
             p_over_estar_reaction: p_re,
             slab_displacement_over_lambda: st.d,
@@ -474,16 +559,17 @@ fn predictor(
 /// (bordered Newton, [`newton_edge`]; secant/regula-falsi (Illinois) search on `d` as
 /// fallback), and the other nodes follow the active-set rules.
 ///
-/// Contact-edge location at an event (rule, see [`edge_position`]): the discrete
-/// solution has zero gap up to `x_k`, but its nodal forces are the work-equivalent
-/// integrals `∫ p N_i dx`, so zero force on node `k` means the pressure vanishes
-/// beyond `x_{k−1}`: the edge lies in `[x_{k−1}, x_k]` (current positions). It is
-/// located inside that interval from the gaps `g₁, g₂` of the next two free nodes at
-/// `x₁, x₂`, using the smooth-edge asymptote `g ∝ (x − a)^{3/2}`:
-/// `a = (x₁ − r x₂)/(1 − r)`, `r = (g₁/g₂)^{2/3}`, clamped to `[x_{k−1}, x_k]`
-/// (midpoint if the fit is unavailable). Measured against Westergaard at AR = 0.01,
-/// linear kinematics, a/λ ≈ 0.11: `a = x_k` errs by −5 % and the midpoint by +2 %
-/// (48×24 mesh), the gap fit by −0.4 % (64×32 mesh).
+/// Contact-edge location at an event (rule, see [`edge_position`] and
+/// [`EdgeRule`]): the discrete solution has zero gap up to `x_k`, but its nodal forces
+/// are the work-equivalent integrals `∫ p N_i dx`, so zero force on node `k` means the
+/// pressure vanishes beyond `x_{k−1}`: the edge lies in `[x_{k−1}, x_k]` (current
+/// positions). The default rule puts it at the fixed fraction
+/// [`super::DISCRETE_EDGE_FRACTION`] of that interval, calibrated on Westergaard's
+/// solution. Measured (AR = 0.01, linear, a/λ ≈ 0.11): `a = x_k` errs by −5 % in `p̄`
+/// and the midpoint by +2 % (48×24 mesh). Gap fits through the next free nodes
+/// ([`EdgeRule::GapPower`], [`EdgeRule::PeriodicGap`]) converge only at first order
+/// at AR = 0.3 (Richardson error of the default mesh 0.6–0.9 %), the fixed fraction
+/// there and at AR = 0.1 is within 0.2 % (`tests/fe_convergence.rs`).
 pub(crate) fn trace(
     model: &mut Model,
     opts: &SolveOptions,
@@ -678,6 +764,7 @@ pub(crate) fn trace(
         }
         model.commit_slip(&mut st);
         let (mut pt, grad) = measure(model, &st, estar, k);
+        pt.a_over_lambda = edge_position(model, &st, k, opts.edge_rule);
         pt.newton_iterations = iters;
         a_cur = pt.a_over_lambda;
         on_step(&pt);

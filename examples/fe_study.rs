@@ -1,0 +1,167 @@
+//! Mesh-convergence study (development tool): `cargo run --release --example fe_study`
+//! with environment variables AR, LEVELS (nx list, e.g. "32,64,128"), NY_OVER_NX,
+//! PEAK (grading peak_ratio), FIRST (first_layer_over_dx), RULE (fraction|power|periodic), KIN (finite|linear),
+//! DUMP (print the curves), PRED (tangent|extrap), PHI_CALIB (calibrate `DISCRETE_EDGE_FRACTION` instead).
+use std::time::Instant;
+use wavy::fe::*;
+
+fn env(name: &str, default: &str) -> String {
+    std::env::var(name).unwrap_or_else(|_| default.to_string())
+}
+
+/// Calibration of `DISCRETE_EDGE_FRACTION`: linear kinematics, AR = 0.01, the edge that
+/// Westergaard's `p̄/E* = π AR sin²(π a)` gives for the computed `p̄`, as a fraction of
+/// `[x_{k−1}, x_k]` (the two ends from the fractions 0 and 1), per mesh level.
+fn calibrate(levels: &[usize], ny_over_nx: f64, opts: &SolveOptions) {
+    let ar = 0.01;
+    let pb = LayerProblem {
+        aspect_ratio: ar,
+        kinematics: Kinematics::Linear,
+        ..Default::default()
+    };
+    for &nx in levels {
+        let ny = ((nx as f64 * ny_over_nx).round() as usize).max(1);
+        let run = |phi| {
+            let o = SolveOptions {
+                mesh: MeshLevel::Elements { nx, ny },
+                edge_rule: EdgeRule::Fraction(phi),
+                ..*opts
+            };
+            solve_curve(&pb, &o, &mut |_| {})
+                .expect("linear curve")
+                .points
+        };
+        let (lo, hi) = (run(0.0), run(1.0));
+        let mut phis = Vec::new();
+        for (l, h) in lo.iter().zip(&hi) {
+            let s2 = l.p_over_estar / (std::f64::consts::PI * ar);
+            let a = s2.sqrt().asin() / std::f64::consts::PI;
+            if (0.1..=0.35).contains(&a) {
+                phis.push((a - l.a_over_lambda) / (h.a_over_lambda - l.a_over_lambda));
+            }
+        }
+        phis.sort_by(f64::total_cmp);
+        println!(
+            "nx {nx}: phi over a in [0.1, 0.35]: min {:.3} median {:.3} max {:.3} ({} events)",
+            phis[0],
+            phis[phis.len() / 2],
+            phis[phis.len() - 1],
+            phis.len()
+        );
+    }
+}
+
+fn main() {
+    let ar: f64 = env("AR", "0.1").parse().unwrap();
+    let levels: Vec<usize> = env("LEVELS", "32,64,128")
+        .split(',')
+        .map(|s| s.parse().unwrap())
+        .collect();
+    let ny_over_nx: f64 = env("NY_OVER_NX", "0.5").parse().unwrap();
+    let mut opts = SolveOptions::default();
+    opts.grading.peak_ratio = env("PEAK", &opts.grading.peak_ratio.to_string())
+        .parse()
+        .unwrap();
+    opts.grading.first_layer_over_dx = env("FIRST", &opts.grading.first_layer_over_dx.to_string())
+        .parse()
+        .unwrap();
+    opts.edge_rule = match env("RULE", "fraction").as_str() {
+        "power" => EdgeRule::GapPower,
+        "periodic" => EdgeRule::PeriodicGap,
+        _ => EdgeRule::default(),
+    };
+    opts.tangent_predictor = env("PRED", "tangent") == "tangent";
+    if std::env::var_os("PHI_CALIB").is_some() {
+        calibrate(&levels, ny_over_nx, &opts);
+        return;
+    }
+    let pb = LayerProblem {
+        aspect_ratio: ar,
+        kinematics: if env("KIN", "finite") == "linear" {
+            Kinematics::Linear
+        } else {
+            Kinematics::Finite
+        },
+        ..Default::default()
+    };
+    let a_values: Vec<f64> = (0..8).map(|i| 0.1 + 0.05 * i as f64).collect();
+    let mut curves = Vec::new();
+    for &nx in &levels {
+        let ny = ((nx as f64 * ny_over_nx).round() as usize).max(1);
+        let o = SolveOptions {
+            mesh: MeshLevel::Elements { nx, ny },
+            ..opts
+        };
+        let t = Instant::now();
+        let r = solve_curve(&pb, &o, &mut |_| {});
+        let el = t.elapsed().as_secs_f64();
+        let pts = match r {
+            Ok(c) => c.points,
+            Err(f) => {
+                eprintln!(
+                    "nx {nx}: FAILED {} after a {:?}",
+                    f.error,
+                    f.points.last().map(|p| p.a_over_lambda)
+                );
+                f.points
+            }
+        };
+        let its: usize = pts.iter().map(|p| p.newton_iterations).sum();
+        eprintln!(
+            "nx {nx} ny {ny}: {el:.2} s, {} steps, {its} Newton, last a {:.4}",
+            pts.len(),
+            pts.last().map_or(0.0, |p| p.a_over_lambda)
+        );
+        if std::env::var("DUMP").is_ok() {
+            for p in &pts {
+                println!(
+                    "{nx} {:.6} {:.8e} {:.8e}",
+                    p.a_over_lambda, p.p_over_estar, p.slab_displacement_over_lambda
+                );
+            }
+        }
+        curves.push(pts);
+    }
+    for &a in &a_values {
+        let ps: Vec<Option<f64>> = curves.iter().map(|c| p_at(c, a)).collect();
+        let mut line = format!("a {a:.2}:");
+        for p in &ps {
+            match p {
+                Some(p) => line += &format!(" {p:.6e}"),
+                None => line += " -",
+            }
+        }
+        for w in ps.windows(2) {
+            if let (Some(x), Some(y)) = (w[0], w[1]) {
+                line += &format!("  d {:+.3}%", 100.0 * (x / y - 1.0));
+            }
+        }
+        if ps.len() >= 3 {
+            let n = ps.len();
+            if let (Some(f1), Some(f2), Some(f3)) = (ps[n - 3], ps[n - 2], ps[n - 1]) {
+                let q = ((f1 - f2).abs() / (f2 - f3).abs()).log2();
+                line += &format!(
+                    "  q {q:.2}  err2 {:.3}%",
+                    100.0 * ((f2 - f3) / f3).abs() * 4.0 / 3.0
+                );
+            }
+        }
+        println!("{line}");
+    }
+    if curves.len() >= 3 {
+        let n = curves.len();
+        if let Some(t) =
+            convergence_table([&curves[n - 3], &curves[n - 2], &curves[n - 1]], &a_values)
+        {
+            println!("global q {:.2}", t.observed_order);
+            for r in &t.rows {
+                println!(
+                    "  a {:.2} q {:.2} default err {:.3}%",
+                    r.a_over_lambda,
+                    r.observed_order,
+                    100.0 * r.default_relative_error
+                );
+            }
+        }
+    }
+}
