@@ -345,7 +345,15 @@ pub(crate) fn equilibrate(
             iteration: total,
             residual: f64::NAN,
         })?;
-        let lam = model.normal_forces(st, &f.grad);
+        // Release test: the vertical multiplier λ = ∂Π/∂y without friction (the same sign as
+        // the normal force at equilibrium, and insensitive to the tangential residual left by
+        // loose passes: testing N there doubled the Newton iterations); the normal force N
+        // with friction, where λ = (N + y_s' T)/w can differ in sign from N.
+        let lam = if model.is_potential() {
+            model.multipliers(st, &f.grad)
+        } else {
+            model.normal_forces(st, &f.grad)
+        };
         let gaps = model.gaps(st);
         let lam_scale = lam.iter().fold(0.0_f64, |m, l| m.max(l.abs())).max(1e-300);
         let gap_tol = opts.gap_tolerance_over_amplitude * model.indenter.amplitude;
