@@ -10,7 +10,7 @@
 //! Measured (2026-11-22, `cargo test --release --test fe_convergence -- --nocapture`):
 //! * AR = 0.1: global observed order 1.37; Richardson error of the default mesh
 //!   0.006–0.12 % (largest at a/λ = 0.10).
-//! * AR = 0.3: global observed order 1.6; error 0.006–0.15 % (largest at a/λ = 0.45).
+//! * AR = 0.3: global observed order 1.61; error 0.006–0.17 % (largest at a/λ = 0.45).
 use wavy::fe::*;
 
 fn a_values() -> Vec<f64> {
