@@ -11,7 +11,6 @@
 
 use super::write_atomic;
 use anyhow::{bail, Context, Result};
-use rayon::prelude::*;
 use sha2::{Digest, Sha256};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -24,6 +23,11 @@ pub trait SweepCase: Sync {
     fn key_text(&self) -> String;
     /// A short label for progress and error messages.
     fn label(&self) -> String;
+    /// Relative cost estimate: cases are started most expensive first, so that the last
+    /// ones to finish are short (longest-processing-time-first scheduling).
+    fn cost_hint(&self) -> f64 {
+        0.0
+    }
 }
 
 /// A result that can be stored in and read back from a cache file.
@@ -124,9 +128,15 @@ pub fn run<C: SweepCase, R: Cacheable>(
         .num_threads(opts.jobs)
         .build()
         .context("cannot start worker threads")?;
-    let computed: Vec<(usize, Result<R>)> = pool.install(|| {
-        todo.par_iter()
-            .map(|&i| {
+    // Most expensive first; each worker takes the next case off the shared queue.
+    todo.sort_by(|&i, &j| cases[j].cost_hint().total_cmp(&cases[i].cost_hint()));
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let done = std::sync::Mutex::new(Vec::with_capacity(todo.len()));
+    pool.scope(|scope| {
+        for _ in 0..opts.jobs {
+            scope.spawn(|_| loop {
+                let t = next.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                let Some(&i) = todo.get(t) else { break };
                 let case = &cases[i];
                 let r = compute(case);
                 let text = format!(
@@ -140,10 +150,11 @@ pub fn run<C: SweepCase, R: Cacheable>(
                     b.inc(1);
                     b.set_message(case.label());
                 }
-                (i, stored)
-            })
-            .collect()
+                done.lock().expect("no worker panicked").push((i, stored));
+            });
+        }
     });
+    let computed = done.into_inner().expect("no worker panicked");
     if let Some(b) = bar {
         b.finish_and_clear();
     }
