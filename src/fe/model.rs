@@ -710,39 +710,35 @@ impl Model {
         }
     }
 
-    /// Normal contact force `N = (g_y − y_s' g_x)/w` of every contact-face node (0 on free
-    /// nodes), per unit depth, units `G λ`.
-    pub fn normal_forces(&self, st: &State, grad: &[f64]) -> Vec<f64> {
+    /// Contact force of every contact-face node in the indenter's frame, `[N, T]` (0 on free
+    /// nodes; per unit depth, units `G λ`): the normal force `N = (g_y − y_s' g_x)/w` and the
+    /// tangential force `T = (g_x + y_s' g_y)/w` along `(1, y_s')/w`, the friction force at
+    /// equilibrium.
+    fn contact_forces(&self, st: &State, grad: &[f64]) -> Vec<[f64; 2]> {
         self.mesh
             .bottom
             .iter()
             .enumerate()
             .map(|(k, &n)| {
                 if !st.active[k] {
-                    return 0.0;
+                    return [0.0; 2];
                 }
                 let s = self.contact_slope(st, n);
-                (grad[2 * n + 1] - s * grad[2 * n]) / (1.0 + s * s).sqrt()
+                let w = (1.0 + s * s).sqrt();
+                let (gx, gy) = (grad[2 * n], grad[2 * n + 1]);
+                [(gy - s * gx) / w, (gx + s * gy) / w]
             })
             .collect()
     }
 
-    /// Tangential contact force `T = (g_x + y_s' g_y)/w` along the indenter's tangent
-    /// `(1, y_s')/w` of every contact-face node (0 on free nodes): the friction force at
-    /// equilibrium.
+    /// Normal contact force `N` of every contact-face node ([`Self::contact_forces`]).
+    pub fn normal_forces(&self, st: &State, grad: &[f64]) -> Vec<f64> {
+        self.contact_forces(st, grad).iter().map(|f| f[0]).collect()
+    }
+
+    /// Tangential contact force `T` of every contact-face node ([`Self::contact_forces`]).
     pub fn tangential_forces(&self, st: &State, grad: &[f64]) -> Vec<f64> {
-        self.mesh
-            .bottom
-            .iter()
-            .enumerate()
-            .map(|(k, &n)| {
-                if !st.active[k] {
-                    return 0.0;
-                }
-                let s = self.contact_slope(st, n);
-                (grad[2 * n] + s * grad[2 * n + 1]) / (1.0 + s * s).sqrt()
-            })
-            .collect()
+        self.contact_forces(st, grad).iter().map(|f| f[1]).collect()
     }
 
     /// Friction threshold `L = min(μ N, τ_max ℓ)` of every active contact-face node (units

@@ -57,6 +57,14 @@ pub(super) fn run(
         .map(|&m| format!("p_over_estar_{}", model_key(m)))
         .collect();
     header.extend(columns.iter().map(String::as_str));
+    let compare_column = s
+        .models
+        .compare_coefficients
+        .as_ref()
+        .map(|c| format!("p_over_estar_wnl_{}", c.replace('-', "_")));
+    if let Some(c) = &compare_column {
+        header.push(c);
+    }
     header.push("wnl_extrapolated");
     let mut table = Table::new("", &header);
     let mut fe_points = Table::new(
@@ -112,6 +120,9 @@ pub(super) fn run(
             for &x in &xs {
                 let mut row: Vec<Cell> = vec![ar.into(), tau.into(), x.into()];
                 row.extend(laws.iter().map(|(_, l)| Cell::Num(l.p_over_estar(x))));
+                if let Some(law) = &compare {
+                    row.push(law.p_over_estar(x).into());
+                }
                 row.push(extrapolated.into());
                 table.push(row);
             }
@@ -177,7 +188,10 @@ pub(super) fn run(
                 let pts = xs.iter().map(|&x| (x, law.p_over_estar(x))).collect();
                 let (label, color) = match name {
                     ModelName::Westergaard => ("Westergaard".to_string(), palette::BLACK),
-                    ModelName::Wnl => (format!("WNL ({})", s.models.reading), palette::VERMILION),
+                    ModelName::Wnl => (
+                        format!("WNL ({}, {})", s.models.reading, s.models.coefficients),
+                        palette::VERMILION,
+                    ),
                 };
                 Series::line(Some(label), color, 2, pts)
             }));

@@ -175,7 +175,12 @@ pub(super) fn run(
                     format!("MSE ours {}", crate::numfmt::sig_digits(f.refit.mse, 2)),
                     format!("MSE paper {}", crate::numfmt::sig_digits(f.paper_mse, 2)),
                 ],
-                legend: Some(LegendPosition::UpperLeft),
+                // A falls with τ_max and AR, B rises: keep the legend off the lines
+                legend: Some(if pick == 0 {
+                    LegendPosition::LowerLeft
+                } else {
+                    LegendPosition::UpperLeft
+                }),
             });
         }
     }
