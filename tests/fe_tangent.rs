@@ -158,57 +158,70 @@ fn global_tangent_with_contact_elimination_matches_central_differences() {
             st.active[k] = true;
         }
         m.enforce_constraints(&mut st);
-        let f = m.assemble(&st, true).expect("valid state");
-        let n = 2 * m.num_nodes();
-        let kmax = (0..n).map(|i| m.sys.get(i, i).abs()).fold(0.0, f64::max);
-        let h = 1e-6;
-        for c in 0..n {
-            if f.resid[c] == 0.0 && m.sys.get(c, c) == 1.0 {
-                continue; // constrained slot
-            }
+        let f = assert_tangent_matches_central_differences(&mut m, &st, 1e-6, &format!("{kin:?}"));
+        // the residual is the energy's gradient (frictionless: a minimisation)
+        let (n, h) = (2 * m.num_nodes(), 1e-6);
+        for c in (0..n).filter(|&c| f.resid[c] != 0.0 || m.sys.get(c, c) != 1.0) {
             let mut e = vec![0.0; n];
             e[c] = 1.0;
-            let sp = m.updated(&st, &e, h);
-            let sm = m.updated(&st, &e, -h);
-            let fp = m.assemble(&sp, false).unwrap();
-            let fm = m.assemble(&sm, false).unwrap();
-            // residual = dΠ/dq
-            let fd_e = (fp.energy - fm.energy) / (2.0 * h);
+            let ep = m.energy(&m.updated(&st, &e, h)).unwrap();
+            let em = m.energy(&m.updated(&st, &e, -h)).unwrap();
+            let fd_e = (ep - em) / (2.0 * h);
             assert!(
                 (fd_e - f.resid[c]).abs() <= 1e-6 * (1.0 + f.resid[c].abs()),
                 "{kin:?} slot {c}: dΠ/dq {fd_e} vs r {}",
                 f.resid[c]
             );
-            for r in 0..n {
-                let fd = (fp.resid[r] - fm.resid[r]) / (2.0 * h);
-                let k = m.sys.get(r, c);
-                if m.sys.get(r, r) == 1.0 && f.resid[r] == 0.0 {
-                    continue;
-                }
-                assert!(
-                    (fd - k).abs() <= 1e-6 * kmax,
-                    "{kin:?} K[{r}][{c}] fd {fd} vs {k}"
-                );
-            }
         }
-        // derivative with respect to the slab displacement
-        let mut sp = st.clone();
-        sp.d += h;
-        m.enforce_constraints(&mut sp);
-        let mut sm = st.clone();
-        sm.d -= h;
-        m.enforce_constraints(&mut sm);
-        let fp = m.assemble(&sp, false).unwrap();
-        let fm = m.assemble(&sm, false).unwrap();
-        for r in 0..n {
+    }
+}
+
+/// The assembled reduced tangent `K` (every free slot) and `∂r/∂d` against central
+/// differences of the reduced residual with step `h`; tolerance 1e-6 of the largest
+/// diagonal entry. Returns the forces at `st` (assembled with the matrix).
+fn assert_tangent_matches_central_differences(
+    m: &mut model::Model,
+    st: &model::State,
+    h: f64,
+    label: &str,
+) -> model::Forces {
+    let f = m.assemble(st, true).expect("valid state");
+    let k_at = m.sys.clone();
+    let n = 2 * m.num_nodes();
+    let kmax = (0..n).map(|i| k_at.get(i, i).abs()).fold(0.0, f64::max);
+    let free = |r: usize| f.resid[r] != 0.0 || k_at.get(r, r) != 1.0;
+    for c in (0..n).filter(|&c| free(c)) {
+        let mut e = vec![0.0; n];
+        e[c] = 1.0;
+        let fp = m.assemble(&m.updated(st, &e, h), false).unwrap();
+        let fm = m.assemble(&m.updated(st, &e, -h), false).unwrap();
+        for r in (0..n).filter(|&r| free(r)) {
             let fd = (fp.resid[r] - fm.resid[r]) / (2.0 * h);
+            let k = k_at.get(r, c);
             assert!(
-                (fd - f.dresid_dd[r]).abs() <= 1e-6 * kmax,
-                "{kin:?} dr/dd[{r}] fd {fd} vs {}",
-                f.dresid_dd[r]
+                (fd - k).abs() <= 1e-6 * kmax,
+                "{label}: K[{r}][{c}] fd {fd} vs {k}"
             );
         }
     }
+    let shifted = |dd: f64| {
+        let mut s = st.clone();
+        s.d += dd;
+        m.enforce_constraints(&mut s);
+        s
+    };
+    let (sp, sm) = (shifted(h), shifted(-h));
+    let fp = m.assemble(&sp, false).unwrap();
+    let fm = m.assemble(&sm, false).unwrap();
+    for r in 0..n {
+        let fd = (fp.resid[r] - fm.resid[r]) / (2.0 * h);
+        assert!(
+            (fd - f.dresid_dd[r]).abs() <= 1e-6 * kmax,
+            "{label}: dr/dd[{r}] fd {fd} vs {}",
+            f.dresid_dd[r]
+        );
+    }
+    f
 }
 
 /// Friction rows (regularised Coulomb–Orowan, `src/fe/contact.rs`): the non-symmetric
@@ -255,11 +268,10 @@ fn friction_tangent_matches_central_differences() {
             let e_c = m.elastic_slip_limit().expect("friction is built");
             assert!(m0.elastic_slip_limit().is_none());
             // node 1 sticks (|e*| = 0.4 e_c), nodes 2 and 3 slip in opposite directions
-            let offsets = [0.0, 0.4 * e_c, 3.0 * e_c, -5.0 * e_c];
-            for k in 1..4 {
+            for (k, offset) in [(1, 0.4 * e_c), (2, 3.0 * e_c), (3, -5.0 * e_c)] {
                 let n = m.mesh.bottom[k];
                 st.slip[k].elastic = 0.0;
-                st.slip[k].anchor_x = st.x[n][0] - offsets[k];
+                st.slip[k].anchor_x = st.x[n][0] - offset;
             }
             let f = m.assemble(&st, true).expect("valid state");
             let f0 = m0.assemble(&st, false).expect("valid state");
@@ -282,47 +294,12 @@ fn friction_tangent_matches_central_differences() {
                     "{kin:?} {name}: node {k} carries no friction force"
                 );
             }
-            let n = 2 * m.num_nodes();
-            let kmax = (0..n).map(|i| m.sys.get(i, i).abs()).fold(0.0, f64::max);
-            let h = 1e-7;
-            for c in 0..n {
-                if f.resid[c] == 0.0 && m.sys.get(c, c) == 1.0 {
-                    continue; // constrained slot
-                }
-                let mut e = vec![0.0; n];
-                e[c] = 1.0;
-                let fp = m.assemble(&m.updated(&st, &e, h), false).unwrap();
-                let fm = m.assemble(&m.updated(&st, &e, -h), false).unwrap();
-                for r in 0..n {
-                    if m.sys.get(r, r) == 1.0 && f.resid[r] == 0.0 {
-                        continue;
-                    }
-                    let fd = (fp.resid[r] - fm.resid[r]) / (2.0 * h);
-                    let k = m.sys.get(r, c);
-                    assert!(
-                        (fd - k).abs() <= 1e-6 * kmax,
-                        "{kin:?} {name}: K[{r}][{c}] fd {fd} vs {k}"
-                    );
-                }
-            }
-            // derivative with respect to the slab displacement
-            let shift = |dd: f64| {
-                let mut s = st.clone();
-                s.d += dd;
-                m.enforce_constraints(&mut s);
-                s
-            };
-            let (sp, sm) = (shift(h), shift(-h));
-            let fp = m.assemble(&sp, false).unwrap();
-            let fm = m.assemble(&sm, false).unwrap();
-            for r in 0..n {
-                let fd = (fp.resid[r] - fm.resid[r]) / (2.0 * h);
-                assert!(
-                    (fd - f.dresid_dd[r]).abs() <= 1e-6 * kmax,
-                    "{kin:?} {name}: dr/dd[{r}] fd {fd} vs {}",
-                    f.dresid_dd[r]
-                );
-            }
+            assert_tangent_matches_central_differences(
+                &mut m,
+                &st,
+                1e-7,
+                &format!("{kin:?} {name}"),
+            );
         }
     }
 }

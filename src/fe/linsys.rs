@@ -32,6 +32,23 @@ pub enum LinSolveError {
     Numeric(String),
 }
 
+/// Solve every right-hand side with `solve` (the triangular solves of a factorisation) on
+/// a copy; write the solutions back and return `true` only if all of them are finite (a
+/// numerically singular factorisation gives infinities or NaNs).
+fn solve_all_finite(rhs: &mut [Vec<f64>], mut solve: impl FnMut(MatMut<'_, f64>)) -> bool {
+    let mut out: Vec<Vec<f64>> = rhs.to_vec();
+    for x in out.iter_mut() {
+        let n = x.len();
+        solve(MatMut::from_column_major_slice_mut(x, n, 1));
+    }
+    if out.iter().all(|x| x.iter().all(|v| v.is_finite())) {
+        rhs.clone_from_slice(&out);
+        true
+    } else {
+        false
+    }
+}
+
 /// Work memory of a factorisation, kept across factorisations.
 struct Scratch {
     req: faer::dyn_stack::StackReq,
@@ -231,23 +248,10 @@ impl SparseSystem {
             Ok(l) => l,
             Err(_) => return Ok(false),
         };
-        let mut out: Vec<Vec<f64>> = rhs.to_vec();
         let mut sbuf = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, par));
-        for x in out.iter_mut() {
-            let n = x.len();
-            llt.solve_in_place_with_conj(
-                Conj::No,
-                MatMut::from_column_major_slice_mut(x, n, 1),
-                par,
-                MemStack::new(&mut sbuf),
-            );
-        }
-        if out.iter().all(|x| x.iter().all(|v| v.is_finite())) {
-            rhs.clone_from_slice(&out);
-            Ok(true)
-        } else {
-            Ok(false)
-        }
+        Ok(solve_all_finite(rhs, |x| {
+            llt.solve_in_place_with_conj(Conj::No, x, par, MemStack::new(&mut sbuf))
+        }))
     }
 
     /// Descent directions for a minimisation: solve `(A + σ D) xⱼ = bⱼ`,
@@ -309,23 +313,10 @@ impl SparseSystem {
             MemStack::new(&mut buf),
             Default::default(),
         );
-        let mut out: Vec<Vec<f64>> = rhs.to_vec();
         let mut sbuf = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, par));
-        for x in out.iter_mut() {
-            let n = x.len();
-            lblt.solve_in_place_with_conj(
-                Conj::No,
-                MatMut::from_column_major_slice_mut(x, n, 1),
-                par,
-                MemStack::new(&mut sbuf),
-            );
-        }
-        if out.iter().all(|x| x.iter().all(|v| v.is_finite())) {
-            rhs.clone_from_slice(&out);
-            Ok(true)
-        } else {
-            Ok(false)
-        }
+        Ok(solve_all_finite(rhs, |x| {
+            lblt.solve_in_place_with_conj(Conj::No, x, par, MemStack::new(&mut sbuf))
+        }))
     }
 
     /// Sparse LU with partial pivoting (COLAMD ordering, computed once) for any square

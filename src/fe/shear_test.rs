@@ -98,10 +98,9 @@ pub fn press_and_shear(test: &ShearTest) -> Result<Vec<ShearPoint>, SolveError> 
         model.activate(&mut st, k);
     }
     let (n_press, n_shear) = test.steps;
-    let mut step = 0;
     let mut points = Vec::with_capacity(n_shear);
-    for i in 1..=n_press + n_shear {
-        step += 1;
+    for step in 1..=n_press + n_shear {
+        let i = step;
         let prev = st.clone();
         if i <= n_press {
             st.d = test.press_over_height * h * i as f64 / n_press as f64;
