@@ -159,7 +159,9 @@ pub struct Model {
 type SlotMap = Vec<[Option<[f64; 2]>; 2]>;
 
 impl Model {
-    /// Build the model. `estar_over_g` converts the interface's `τ_max/E*` to solver units.
+    /// Build the model. The interface's `τ_max/E*` is converted to solver units (`G = 1`)
+    /// with the material's `E*/G`, and its elastic slip to a length with the mean face
+    /// element size.
     pub fn new(
         mesh: Mesh,
         mat: NeoHooke,
@@ -630,12 +632,10 @@ impl Model {
     fn friction_eval(&self, st: &State, k: usize, grad: &[f64], law: &FrictionLaw) -> FrictionEval {
         let b = &self.mesh.bottom;
         let n = b[k];
-        let (s, c) = match self.kin {
-            Kinematics::Finite => (
-                self.indenter.slope(st.x[n][0]),
-                self.indenter.curvature(st.x[n][0]),
-            ),
-            Kinematics::Linear => (0.0, 0.0),
+        let s = self.contact_slope(st, n);
+        let c = match self.kin {
+            Kinematics::Finite => self.indenter.curvature(st.x[n][0]),
+            Kinematics::Linear => 0.0,
         };
         let w = (1.0 + s * s).sqrt();
         let e = self.trial_elastic_slip(st, k);

@@ -100,16 +100,15 @@ pub fn press_and_shear(test: &ShearTest) -> Result<Vec<ShearPoint>, SolveError> 
     let (n_press, n_shear) = test.steps;
     let mut points = Vec::with_capacity(n_shear);
     for step in 1..=n_press + n_shear {
-        let i = step;
         let prev = st.clone();
-        if i <= n_press {
-            st.d = test.press_over_height * h * i as f64 / n_press as f64;
+        if step <= n_press {
+            st.d = test.press_over_height * h * step as f64 / n_press as f64;
             // predictor: uniform compression
             for (x, xr) in st.x.iter_mut().zip(&model.mesh.nodes) {
                 x[1] = xr[1] * (h - st.d) / h;
             }
         } else {
-            let j = i - n_press;
+            let j = step - n_press;
             let dx = test.shift_over_height * h * j as f64 / n_shear as f64;
             // predictor: simple shear of the increment
             for (x, xr) in st.x.iter_mut().zip(&model.mesh.nodes) {
@@ -121,7 +120,7 @@ pub fn press_and_shear(test: &ShearTest) -> Result<Vec<ShearPoint>, SolveError> 
         equilibrate(&mut model, &mut st, &opts, None, None)
             .map_err(|f| f.into_error(step, st.d))?;
         model.commit_slip(&mut st);
-        if i <= n_press {
+        if step <= n_press {
             continue;
         }
         let f = model.assemble(&st, false).ok_or(SolveError::Inverted {

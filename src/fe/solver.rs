@@ -81,8 +81,8 @@ impl StepFail {
     }
 }
 
-/// Solve the assembled tangent for each right-hand side in place: Cholesky (LU fallback)
-/// for the symmetric frictionless tangent, LU with friction.
+/// Solve the assembled tangent for each right-hand side in place: Cholesky (`L B Lᵀ`, then
+/// LU as fallbacks) for the symmetric frictionless tangent, LU with friction.
 fn linear_solve(
     model: &mut Model,
     rhs: &mut [Vec<f64>],
@@ -254,12 +254,10 @@ pub(crate) fn newton_edge(
         ];
         // exact Newton step; after a step that had to be cut, the shifted (descent)
         // matrix where the (symmetric) tangent is indefinite
-        let solved = if !model.is_potential() {
-            model.sys.lu_solve_multi(&mut rhs)
-        } else if backtracked {
+        let solved = if backtracked && model.is_potential() {
             model.sys.solve_descent_multi(&mut rhs).map(|_| ())
         } else {
-            model.sys.solve_symmetric_multi(&mut rhs)
+            linear_solve(model, &mut rhs)
         };
         if let Err(e) = solved {
             return Err(StepFail::Linear {
@@ -458,6 +456,7 @@ pub(crate) fn measure(
     st: &State,
     estar: f64,
     edge: usize,
+    rule: EdgeRule,
 ) -> (CurvePoint, Vec<f64>) {
     let f = model
         .assemble(st, false)
@@ -470,7 +469,7 @@ pub(crate) fn measure(
     let p_re = model.slab_reaction(&f.grad) / half / estar;
     (
         CurvePoint {
-            a_over_lambda: edge_position(model, st, edge, EdgeRule::default()),
+            a_over_lambda: edge_position(model, st, edge, rule),
             p_over_estar: p_tr,
             p_over_estar_reaction: p_re,
             slab_displacement_over_lambda: st.d,
@@ -771,8 +770,7 @@ pub(crate) fn trace(
             Err(f) => return Err(fail(f.into_error(step, st.d), points)),
         }
         model.commit_slip(&mut st);
-        let (mut pt, grad) = measure(model, &st, estar, k);
-        pt.a_over_lambda = edge_position(model, &st, k, opts.edge_rule);
+        let (mut pt, grad) = measure(model, &st, estar, k, opts.edge_rule);
         pt.newton_iterations = iters;
         a_cur = pt.a_over_lambda;
         on_step(&pt);
