@@ -3,9 +3,8 @@
 //!
 //! * Newton: consistent tangent of the reduced problem, sparse Cholesky (symmetric
 //!   indefinite `L B Lᵀ` if the tangent is not positive definite, see
-//!   [`super::linsys`]; symbolic factorisations reused; in the bordered edge solve,
-//!   after a step that had to be cut, a diagonally shifted Cholesky instead, which
-//!   gives a descent direction), backtracking line search on the energy `Π` (Armijo,
+//!   [`super::linsys`]; symbolic factorisations reused), backtracking line search on
+//!   the energy `Π` (Armijo,
 //!   `c = 10⁻⁴`); if the Newton direction is not a descent direction the residual norm
 //!   is used instead. Inverted trial configurations (`J ≤ 0`) have `Π = +∞` and are
 //!   backtracked. Convergence: `‖r‖∞ ≤ rtol · f_e + atol`, `f_e` the largest
@@ -22,7 +21,10 @@
 //!   `d` with ordinary Newton solves takes over, and a failed trial load (Newton
 //!   divergence, inversion, active-set cycling) is retried from the last converged
 //!   state with half the increment, up to `max_step_cuts` times. Predictor: tangent
-//!   (Euler) step from the last converged state.
+//!   (Euler) step from the last converged state, to the load at which the target node
+//!   closes along that tangent (scaled by the previous event's ratio of actual to
+//!   extrapolated increment). Nodes left touching with a vanishing force at the last
+//!   event enter the next step active.
 
 use super::error::{CurveFailure, SolveError};
 use super::model::{Model, State};
@@ -213,7 +215,6 @@ pub(crate) fn newton_edge(
     let node = model.mesh.bottom[k];
     let mut last_res = f64::NAN;
     let mut kscale = 0.0;
-    let mut backtracked = false;
     for it in 0..=opts.max_newton_iterations {
         // convergence check on the forces alone (cached after the line search), the
         // matrix only when another iteration follows
@@ -252,14 +253,7 @@ pub(crate) fn newton_edge(
             f.resid.iter().map(|r| -r).collect::<Vec<f64>>(),
             f.dresid_dd.iter().map(|r| -r).collect::<Vec<f64>>(),
         ];
-        // exact Newton step; after a step that had to be cut, the shifted (descent)
-        // matrix where the (symmetric) tangent is indefinite
-        let solved = if backtracked && model.is_potential() {
-            model.sys.solve_descent_multi(&mut rhs).map(|_| ())
-        } else {
-            linear_solve(model, &mut rhs)
-        };
-        if let Err(e) = solved {
+        if let Err(e) = linear_solve(model, &mut rhs) {
             return Err(StepFail::Linear {
                 iteration: it,
                 message: e.to_string(),
@@ -296,7 +290,6 @@ pub(crate) fn newton_edge(
             }
             alpha *= 0.5;
         }
-        backtracked = alpha < 1.0;
         match accepted {
             Some(t) => *st = t,
             None => {
@@ -505,30 +498,42 @@ fn deformed_state(model: &Model, st: &State, grad: &[f64], estar: f64) -> Deform
     }
 }
 
+/// `∂q/∂d` at a converged state: `K ∂q/∂d = −∂r/∂d` (the tangent is positive definite
+/// there); `None` if the state is inverted or the solve fails.
+fn load_tangent(model: &mut Model, st: &State) -> Option<Vec<f64>> {
+    let f = model.assemble(st, true)?;
+    let mut rhs = [f.dresid_dd.iter().map(|v| -v).collect::<Vec<f64>>()];
+    linear_solve(model, &mut rhs).ok()?;
+    let [z] = rhs;
+    Some(z)
+}
+
+/// Rate `∂g_k/∂d` at which the gap of the free contact-face node `k` closes along the
+/// load tangent `z` ([`load_tangent`]).
+fn gap_rate(model: &Model, st: &State, k: usize, z: &[f64]) -> f64 {
+    let node = model.mesh.bottom[k];
+    let (_, dc) = model.edge_constraint(st, k);
+    dc[0] * z[2 * node] + dc[1] * z[2 * node + 1]
+}
+
 /// Predictor for the load `cur.d + dd`: the tangent (Euler) predictor
-/// `q + dd · ∂q/∂d` with `K ∂q/∂d = −∂r/∂d` at the converged state (its tangent is
-/// positive definite there), else linear extrapolation of the last increment, else a
-/// uniform vertical compression. The first that has no inverted element is used.
+/// `q + dd · ∂q/∂d` along the load tangent `tangent` of the converged state, else
+/// linear extrapolation of the last increment, else a uniform vertical compression.
+/// The first that has no inverted element is used.
 fn predictor(
     model: &mut Model,
     cur: &State,
     prev: Option<&State>,
     dd: f64,
-    tangent: bool,
+    tangent: Option<&[f64]>,
 ) -> Option<State> {
     let h = model.mesh.thickness;
     let mut tries: Vec<State> = Vec::new();
-    if tangent {
-        if let Some(f) = model.assemble(cur, true) {
-            let z: Vec<f64> = f.dresid_dd.iter().map(|v| -v).collect();
-            let mut rhs = [z];
-            if linear_solve(model, &mut rhs).is_ok() {
-                let mut st = cur.clone();
-                st.d = cur.d + dd;
-                model.enforce_constraints(&mut st);
-                tries.push(model.updated(&st, &rhs[0], dd));
-            }
-        }
+    if let Some(z) = tangent {
+        let mut st = cur.clone();
+        st.d = cur.d + dd;
+        model.enforce_constraints(&mut st);
+        tries.push(model.updated(&st, z, dd));
     }
     if let Some(p) = prev {
         let ddp = cur.d - p.d;
@@ -588,6 +593,7 @@ pub(crate) fn trace(
     let mut cur = model.initial_state();
     let mut prev: Option<State> = None;
     let mut dd_guess = opts.first_step_over_amplitude * amp;
+    let mut event_ratio = 1.0;
     let mut a_cur = 0.0;
     let mut points: Vec<CurvePoint> = Vec::new();
     let mut step = 1;
@@ -621,44 +627,71 @@ pub(crate) fn trace(
             // the next edge node would be the valley node (x = λ/2): full contact
             break;
         }
+        // Nodes skipped above touch with a vanishing force (released at the last event):
+        // they carry load as soon as the load grows, so they enter the step active (left
+        // free, they penetrate deeply and their late activation stalls the edge solve).
+        let touching: Vec<usize> = (c + 1..k).filter(|&i| gaps_now[i] <= open_tol).collect();
+        if !touching.is_empty() {
+            for i in touching {
+                model.activate(&mut cur, i);
+            }
+            model.enforce_constraints(&mut cur);
+        }
         let gap_k = |m: &Model, st: &State| m.gaps(st)[k];
         let g0 = gap_k(model, &cur);
         let tol = (opts.edge_gap_rtol * g0.abs()).max(1e-15 * amp);
         let mut lo = (cur.clone(), g0);
         let mut lo_prev: Option<(State, f64)> = prev.as_ref().map(|p| (p.clone(), gap_k(model, p)));
         let mut hi: Option<(State, f64)> = None;
-        let mut trial = cur.d + dd_guess;
         let mut iters = 0;
         let mut cuts = 0;
         let mut evals = 0;
         let mut illinois_side = 0i32;
-        let bordered = |model: &mut Model, base: &State, base_prev: Option<&State>, dd| {
-            predictor(model, base, base_prev, dd, opts.tangent_predictor).and_then(|mut st| {
-                let it = equilibrate(model, &mut st, opts, Some(k), Some(tol)).ok()?;
-                let g = gap_k(model, &st);
-                (g.abs() <= tol && st.d > cur.d).then_some((st, it))
-            })
+        let tangent_at = |model: &mut Model, st: &State| {
+            opts.tangent_predictor
+                .then(|| load_tangent(model, st))
+                .flatten()
         };
+        // First trial increment: the load at which node k closes, extrapolated along the
+        // load tangent and scaled by the ratio of actual to extrapolated increment of the
+        // previous event (the gap closes faster as the edge approaches).
+        let mut z_base = tangent_at(model, &cur);
+        let extrapolated = z_base.as_ref().and_then(|z| {
+            let rate = gap_rate(model, &cur, k, z);
+            (rate < 0.0).then(|| g0 / -rate)
+        });
+        let dd_first = extrapolated.map_or(dd_guess, |e| e * event_ratio);
+        let mut trial = cur.d + dd_first;
+        let bordered =
+            |model: &mut Model, base: &State, base_prev: Option<&State>, z: Option<&[f64]>, dd| {
+                predictor(model, base, base_prev, dd, z).and_then(|mut st| {
+                    let it = equilibrate(model, &mut st, opts, Some(k), Some(tol)).ok()?;
+                    let g = gap_k(model, &st);
+                    (g.abs() <= tol && st.d > cur.d).then_some((st, it))
+                })
+            };
         let fast = if !opts.bordered_edge_solve {
             None
         } else if model.is_potential() {
-            bordered(model, &cur, prev.as_ref(), dd_guess)
+            bordered(model, &cur, prev.as_ref(), z_base.as_deref(), dd_first)
         } else {
             // With friction the step is path dependent: when the event cannot be reached in
             // one increment, advance by converged, committed sub-steps (half the trial
             // increment, the target node held free) and retry from there.
             let mut base = cur.clone();
             let mut base_prev = prev.clone();
-            let mut dd = dd_guess;
+            let mut dd = dd_first;
             let mut spent = 0;
             let mut out = None;
             for _ in 0..=opts.max_step_cuts {
-                if let Some((st, it)) = bordered(model, &base, base_prev.as_ref(), dd) {
+                if let Some((st, it)) =
+                    bordered(model, &base, base_prev.as_ref(), z_base.as_deref(), dd)
+                {
                     out = Some((st, it + spent));
                     break;
                 }
                 dd *= 0.5;
-                let sub = predictor(model, &base, base_prev.as_ref(), dd, opts.tangent_predictor)
+                let sub = predictor(model, &base, base_prev.as_ref(), dd, z_base.as_deref())
                     .and_then(|mut st| {
                         let it = equilibrate(model, &mut st, opts, Some(k), None).ok()?;
                         Some((st, it))
@@ -668,6 +701,7 @@ pub(crate) fn trace(
                     if gap_k(model, &st) > tol {
                         model.commit_slip(&mut st);
                         base_prev = Some(std::mem::replace(&mut base, st));
+                        z_base = tangent_at(model, &base);
                     }
                 }
             }
@@ -690,12 +724,13 @@ pub(crate) fn trace(
                 ));
             }
             let base_d = lo.0.d;
+            let z_lo = tangent_at(model, &lo.0);
             let attempt = match predictor(
                 model,
                 &lo.0,
                 lo_prev.as_ref().map(|p| &p.0),
                 trial - base_d,
-                opts.tangent_predictor,
+                z_lo.as_deref(),
             ) {
                 Some(mut st) => equilibrate(model, &mut st, opts, Some(k), None).map(|it| (st, it)),
                 None => Err(StepFail::Inverted {
@@ -777,6 +812,9 @@ pub(crate) fn trace(
         points.push(pt);
         last_grad = grad;
         dd_guess = st.d - cur.d;
+        if let Some(e) = extrapolated {
+            event_ratio = (dd_guess / e).clamp(0.5, 4.0);
+        }
         prev = Some(std::mem::replace(&mut cur, st));
         step += 1;
     }
