@@ -53,7 +53,7 @@ fn calibrate(levels: &[usize], ny_over_nx: f64, opts: &SolveOptions) {
 
 fn main() {
     let ar: f64 = env("AR", "0.1").parse().unwrap();
-    let levels: Vec<usize> = env("LEVELS", "32,64,128")
+    let levels: Vec<usize> = env("LEVELS", "32,48,72")
         .split(',')
         .map(|s| s.parse().unwrap())
         .collect();
@@ -139,10 +139,11 @@ fn main() {
         if ps.len() >= 3 {
             let n = ps.len();
             if let (Some(f1), Some(f2), Some(f3)) = (ps[n - 3], ps[n - 2], ps[n - 1]) {
-                let q = ((f1 - f2).abs() / (f2 - f3).abs()).log2();
+                let r = levels[n - 2] as f64 / levels[n - 3] as f64;
+                let q = ((f1 - f2).abs() / (f2 - f3).abs()).ln() / r.ln();
                 line += &format!(
                     "  q {q:.2}  err2 {:.3}%",
-                    100.0 * ((f2 - f3) / f3).abs() * 4.0 / 3.0
+                    100.0 * ((f2 - f3) / f3).abs() * r * r / (r * r - 1.0)
                 );
             }
         }
@@ -150,9 +151,12 @@ fn main() {
     }
     if curves.len() >= 3 {
         let n = curves.len();
-        if let Some(t) =
-            convergence_table([&curves[n - 3], &curves[n - 2], &curves[n - 1]], &a_values)
-        {
+        let ratio = levels[n - 2] as f64 / levels[n - 3] as f64;
+        if let Some(t) = convergence_table(
+            [&curves[n - 3], &curves[n - 2], &curves[n - 1]],
+            ratio,
+            &a_values,
+        ) {
             println!("global q {:.2}", t.observed_order);
             for r in &t.rows {
                 println!(

@@ -5,16 +5,18 @@
 //! interpolated with the cubic Lagrange polynomial through the four converged points
 //! nearest to `a` (two on each side where possible).
 //!
-//! Richardson extrapolation for three meshes refined by a factor 2 (`f₁` coarse, `f₂`
-//! default, `f₃` fine): the observed order is `q = log₂(|f₁ − f₂| / |f₂ − f₃|)`; a
-//! global order `q̄` is computed from the root-mean-square differences over all `a`
-//! values (per-`a` orders are noisy where the differences are tiny) and the error
-//! estimate of the default mesh is `|f₂ − f₃| · 2^q̃ / (2^q̃ − 1)`, relative to `f₃`,
-//! with `q̃ = q̄` limited to `[1, 2]`: the formal orders of the two error sources, the
-//! contact-edge location (first order, `O(h)` within the last loaded element) and the
-//! Q1 load at a fixed slab displacement (second order). Where the two partly cancel
-//! on the coarse mesh the observed order comes out larger than 2, and the limit keeps
-//! the estimate from shrinking below `(4/3)|f₂ − f₃|`; below 1 the factor is at most 2.
+//! Richardson extrapolation for three meshes refined by a constant factor `ρ` (`f₁`
+//! coarse, `f₂` default, `f₃` fine; `ρ = 1.5` for the named levels): the observed order
+//! is `q = log(|f₁ − f₂| / |f₂ − f₃|) / log ρ`; a global order `q̄` is computed from the
+//! root-mean-square differences over all `a` values (per-`a` orders are noisy where the
+//! differences are tiny) and the error estimate of the default mesh is
+//! `|f₂ − f₃| · ρ^q̃ / (ρ^q̃ − 1)`, relative to `f₃`, with `q̃ = q̄` limited to `[1, 2]`:
+//! the formal orders of the two error sources, the contact-edge location (first order,
+//! `O(h)` within the last loaded element) and the Q1 load at a fixed slab displacement
+//! (second order). Where the two partly cancel on the coarse mesh the observed order
+//! comes out larger than 2, and the limit keeps the estimate from shrinking below
+//! `ρ²/(ρ² − 1) |f₂ − f₃|` (1.8 |f₂ − f₃| for ρ = 1.5); below 1 the factor is at most
+//! `ρ/(ρ − 1)` (3 for ρ = 1.5).
 
 use super::{solve_curve, CurveFailure, CurvePoint, LayerProblem, MeshLevel, SolveOptions};
 
@@ -81,8 +83,12 @@ pub struct ConvergenceTable {
     pub observed_order: f64,
 }
 
-/// Build the table from three curves (coarse, default, fine; refinement ratio 2).
-pub fn convergence_table(curves: [&[CurvePoint]; 3], a_values: &[f64]) -> Option<ConvergenceTable> {
+/// Build the table from three curves (coarse, default, fine; refinement ratio `ratio`).
+pub fn convergence_table(
+    curves: [&[CurvePoint]; 3],
+    ratio: f64,
+    a_values: &[f64],
+) -> Option<ConvergenceTable> {
     let mut vals = Vec::new();
     for &a in a_values {
         let f = [
@@ -97,14 +103,14 @@ pub fn convergence_table(curves: [&[CurvePoint]; 3], a_values: &[f64]) -> Option
         s12 += ((f[0] - f[1]) / f[2]).powi(2);
         s23 += ((f[1] - f[2]) / f[2]).powi(2);
     }
-    let q = (s12.sqrt() / s23.sqrt()).log2();
-    let rq = 2f64.powf(q.clamp(1.0, 2.0));
+    let q = (s12.sqrt() / s23.sqrt()).ln() / ratio.ln();
+    let rq = ratio.powf(q.clamp(1.0, 2.0));
     let rows = vals
         .into_iter()
         .map(|(a, f)| ConvergenceRow {
             a_over_lambda: a,
             p_over_estar: f,
-            observed_order: ((f[0] - f[1]).abs() / (f[1] - f[2]).abs()).log2(),
+            observed_order: ((f[0] - f[1]).abs() / (f[1] - f[2]).abs()).ln() / ratio.ln(),
             default_relative_error: ((f[1] - f[2]) / f[2]).abs() * rq / (rq - 1.0),
         })
         .collect();
@@ -129,14 +135,34 @@ pub fn mesh_convergence(
     )
 }
 
-/// As [`mesh_convergence`] on three given meshes (each twice as fine as the previous;
-/// the middle one plays the role of the "default" mesh in the table).
+/// As [`mesh_convergence`] on three given meshes, refined by a constant ratio of their
+/// element counts along the face (the middle one plays the role of the "default" mesh
+/// in the table).
 pub fn mesh_convergence_levels(
     problem: &LayerProblem,
     opts: &SolveOptions,
     levels: [MeshLevel; 3],
     a_values: &[f64],
 ) -> Result<ConvergenceTable, Box<CurveFailure>> {
+    let invalid = |field, value, allowed| {
+        Box::new(CurveFailure {
+            error: super::SolveError::InvalidInput {
+                field,
+                value,
+                allowed,
+            },
+            points: Vec::new(),
+        })
+    };
+    let nx = levels.map(|l| l.counts().0 as f64);
+    let ratio = nx[1] / nx[0];
+    if !(ratio > 1.0 && (nx[2] / nx[1] - ratio).abs() <= 1e-9 * ratio) {
+        return Err(invalid(
+            "levels",
+            nx[2] / nx[1],
+            "element counts refined by one constant ratio > 1",
+        ));
+    }
     let mut curves = Vec::new();
     for level in levels {
         let o = SolveOptions {
@@ -145,14 +171,11 @@ pub fn mesh_convergence_levels(
         };
         curves.push(solve_curve(problem, &o, &mut |_| {})?.points);
     }
-    convergence_table([&curves[0], &curves[1], &curves[2]], a_values).ok_or_else(|| {
-        Box::new(CurveFailure {
-            error: super::SolveError::InvalidInput {
-                field: "a_values",
-                value: f64::NAN,
-                allowed: "inside the computed range of every curve",
-            },
-            points: Vec::new(),
-        })
+    convergence_table([&curves[0], &curves[1], &curves[2]], ratio, a_values).ok_or_else(|| {
+        invalid(
+            "a_values",
+            f64::NAN,
+            "inside the computed range of every curve",
+        )
     })
 }

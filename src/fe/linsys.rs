@@ -361,7 +361,11 @@ impl SparseSystem {
         let mat = SparseColMatRef::new(sym, &self.values);
         let par = Par::Seq;
         if self.symbolic.is_none() {
-            let symbolic = factorize_symbolic_lu(sym, LuSymbolicParams::default())
+            let params = LuSymbolicParams {
+                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+                ..Default::default()
+            };
+            let symbolic = factorize_symbolic_lu(sym, params)
                 .map_err(|e| LinSolveError::Symbolic(format!("{e:?}")))?;
             let req = symbolic
                 .factorize_numeric_lu_scratch::<f64>(par, Default::default())
