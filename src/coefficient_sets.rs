@@ -20,22 +20,22 @@ pub const NAMES: &[&str] = &[
 
 /// Table 1 re-derived from our FE curves, reading `bracket-sq`.
 pub const OURS_BRACKET_SQ: Coefficients = Coefficients {
-    a: [0.371921, -10.0952, 2.53005, 4.25652, -47.5053, 11.535],
-    b: [0.952442, 1.10005, 0.184035, -0.768613, 10.99, -5.87888],
+    a: [0.324999, -9.6637, 2.8465, 3.59894, -48.7334, 11.5058],
+    b: [0.956535, 1.06433, 0.142646, -0.722539, 11.1215, -5.78798],
     domain: FitDomain::PAPER,
 };
 
 /// Table 1 re-derived from our FE curves, reading `bracket-2x`.
 pub const OURS_BRACKET_2X: Coefficients = Coefficients {
-    a: [0.0997843, -2.62084, 0.607349, 1.21051, -12.3065, 3.02141],
-    b: [0.999137, -0.14417, 0.484065, -0.207382, 5.18559, -4.47051],
+    a: [0.0830076, -2.47449, 0.756247, 0.965861, -12.6994, 2.77026],
+    b: [0.996998, -0.122979, 0.490701, -0.256052, 5.17458, -4.43278],
     domain: FitDomain::PAPER,
 };
 
 /// Table 1 re-derived from our FE curves, reading `literal`.
 pub const OURS_LITERAL: Coefficients = Coefficients {
-    a: [-0.0609617, 0.896016, 1.05236, -7.77049, -11.612, 0.714673],
-    b: [0.956067, 0.813767, 0.258765, -0.817751, 8.90709, -4.81332],
+    a: [-0.0499277, 0.868697, 0.651987, -7.75324, -11.7623, 2.81558],
+    b: [0.949442, 0.846717, 0.463466, -0.90928, 9.02735, -5.87496],
     domain: FitDomain::PAPER,
 };
 
