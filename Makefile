@@ -31,6 +31,7 @@ bless: reproduce
 ## Timings (medians) of the solver and the model laws.
 bench:
 	$(CARGO) bench --locked
+	$(CARGO) run --release --locked --quiet --example bench_medians
 
 clean:
 	$(CARGO) clean

@@ -1,8 +1,10 @@
-//! Time per full load curve (first contact to a/λ = 0.45) at each mesh level, finite
-//! kinematics, AR = 0.1 and AR = 0.3, κ/G = 1000, and the linear curve at the default
-//! mesh (AR = 0.1). Before the timings, the peak memory of one curve per AR and mesh
-//! level is printed: each curve runs in a fresh child process (this bench binary
-//! re-invoked with `WAVY_BENCH_CURVE=AR,level`), which reports its `VmHWM` from
+//! Time per full load curve (first contact to a/λ = 0.45) at each mesh level and at
+//! 64 × 32 (the default before the mesh was chosen by the 0.5 % tolerance), finite
+//! kinematics, AR = 0.1 and AR = 0.3, κ/G = 1000; the linear curve at the default mesh
+//! (AR = 0.1); and frictional curves at the default mesh (μ = 1, τ_max/E* = 0.2, the
+//! costliest panels of Fig. 3). Before the timings, the peak memory of one curve per AR
+//! and mesh level is printed: each curve runs in a fresh child process (this bench
+//! binary re-invoked with `WAVY_BENCH_CURVE=AR,level`), which reports its `VmHWM` from
 //! `/proc/self/status`.
 //! Run: `cargo bench --bench solver` (criterion reports the median of the samples).
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -12,9 +14,18 @@ use wavy::fe::*;
 const CHILD: &str = "WAVY_BENCH_CURVE";
 
 fn curve(ar: f64, kin: Kinematics, mesh: MeshLevel) -> usize {
+    frictional_curve(ar, kin, mesh, 0.0)
+}
+
+fn frictional_curve(ar: f64, kin: Kinematics, mesh: MeshLevel, tau_max_over_estar: f64) -> usize {
     let pb = LayerProblem {
         aspect_ratio: ar,
         kinematics: kin,
+        interface: Interface::coulomb_orowan(
+            wavy::defaults::friction_coefficient(),
+            tau_max_over_estar,
+            wavy::defaults::elastic_slip_over_element(),
+        ),
         ..Default::default()
     };
     let opts = SolveOptions {
@@ -27,10 +38,11 @@ fn curve(ar: f64, kin: Kinematics, mesh: MeshLevel) -> usize {
         .len()
 }
 
-fn levels() -> [(&'static str, MeshLevel); 3] {
+fn levels() -> [(&'static str, MeshLevel); 4] {
     [
         ("coarse", MeshLevel::Coarse),
         ("default", MeshLevel::Default),
+        ("64x32", MeshLevel::Elements { nx: 64, ny: 32 }),
         ("fine", MeshLevel::Fine),
     ]
 }
@@ -91,6 +103,21 @@ fn bench(c: &mut Criterion) {
     for (name, level) in levels() {
         g.bench_function(format!("finite_{name}"), |b| {
             b.iter(|| black_box(curve(0.3, Kinematics::Finite, level)))
+        });
+    }
+    g.finish();
+    let mut g = c.benchmark_group("friction_tau0.2");
+    g.sample_size(10);
+    for ar in [0.1, 0.3] {
+        g.bench_function(format!("finite_default_ar{ar}"), |b| {
+            b.iter(|| {
+                black_box(frictional_curve(
+                    ar,
+                    Kinematics::Finite,
+                    MeshLevel::Default,
+                    0.2,
+                ))
+            })
         });
     }
     g.finish();

@@ -1,6 +1,6 @@
 //! Mesh convergence (requirement (ii) of issue #3), finite kinematics, κ/G = 1000,
-//! h = λ, at AR = 0.1 and AR = 0.3: coarse/default/fine = 32×16/64×32/128×64 (each
-//! level twice as fine as the previous, same grading). `p̄/E*` is compared at fixed
+//! h = λ, at AR = 0.1 and AR = 0.3: coarse/default/fine = 32×16/48×24/72×36 (each
+//! level 1.5× as fine as the previous, same grading). `p̄/E*` is compared at fixed
 //! a/λ ∈ {0.1, 0.15, …, 0.45} (cubic interpolation of √p̄, `wavy::fe::p_at`).
 //! Reference: the Richardson-extrapolated value itself (no external data exists for
 //! this finite-strain problem); the thresholds are the targets of issue #3: default-mesh
@@ -8,9 +8,9 @@
 //! least 1, the formal order of the contact-edge location (`wavy::fe::convergence`).
 //!
 //! Measured (2026-11-22, `cargo test --release --test fe_convergence -- --nocapture`):
-//! * AR = 0.1: global observed order 1.37; Richardson error of the default mesh
-//!   0.006–0.12 % (largest at a/λ = 0.10).
-//! * AR = 0.3: global observed order 1.61; error 0.006–0.17 % (largest at a/λ = 0.45).
+//! * AR = 0.1: global observed order 1.55; Richardson error of the default mesh
+//!   0.014–0.19 % (largest at a/λ = 0.10).
+//! * AR = 0.3: global observed order 1.79; error 0.007–0.26 % (largest at a/λ = 0.45).
 use wavy::fe::*;
 
 fn a_values() -> Vec<f64> {

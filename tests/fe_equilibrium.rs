@@ -16,6 +16,7 @@ fn check(kin: Kinematics, ar: f64) {
         ..Default::default()
     };
     let mut seen = 0;
+    let mut worst = 0.0_f64;
     let curve = solve_curve(&pb, &opts, &mut |_| seen += 1).expect("curve");
     assert_eq!(seen, curve.points.len(), "on_step called once per point");
     assert!(curve.points.len() >= 5);
@@ -29,7 +30,9 @@ fn check(kin: Kinematics, ar: f64) {
             p.p_over_estar_reaction
         );
         assert!(p.p_over_estar > 0.0);
+        worst = worst.max(rel);
     }
+    eprintln!("{kin:?}, AR {ar}: max |traction − reaction|/reaction {worst:.2e}");
     // monotone loading: a, p̄ and d increase
     for w in curve.points.windows(2) {
         assert!(w[1].a_over_lambda > w[0].a_over_lambda);

@@ -204,9 +204,10 @@ pub struct SolveOptions {
     pub max_line_search: usize,
     /// Maximum line-search halvings of the bordered edge solve. A bordered step that
     /// needs more is a poor start (the secant fallback takes over). Measured at
-    /// AR = 0.3 (64×32): the bordered solve fails 11 times per curve, at iterations
-    /// 1–3, each after all its halvings; 8 instead of 40 halvings saves 6 % of the
-    /// curve's time with identical results.
+    /// AR = 0.3 (64×32, with the predictor of the time, which repeated the last
+    /// increment): the bordered solve failed 11 times per curve, at iterations 1–3,
+    /// each after all its halvings; 8 instead of 40 halvings saved 6 % of the curve's
+    /// time with identical results.
     pub max_edge_line_search: usize,
     /// Edge search: relative gap tolerance (w.r.t. the target node's initial gap).
     pub edge_gap_rtol: f64,
