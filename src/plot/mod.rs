@@ -226,8 +226,14 @@ pub fn render_svg(figure: &Figure) -> Result<String, PlotError> {
 }
 
 /// A tick label: at most four significant digits, no trailing zeros, never `-0`.
+/// Tick label: four significant digits; a tick at round-off distance from zero (plotters
+/// places ticks by adding steps, so the zero tick can come out as −1.1e-16) reads 0.
 fn tick(v: f64) -> String {
-    crate::numfmt::sig_digits(v, 4)
+    if v.abs() < 1e-12 {
+        "0".into()
+    } else {
+        crate::numfmt::sig_digits(v, 4)
+    }
 }
 
 fn draw_panel(
