@@ -140,20 +140,19 @@ pub fn corners_ok(x: &[[f64; 2]; 4]) -> bool {
 
 /// Element energy; `None` if the element is inverted.
 pub fn energy(q: &QuadRef, mat: &NeoHooke, x: &[[f64; 2]; 4]) -> Option<f64> {
-    if !corners_ok(x) {
-        return None;
+    gradient(q, mat, x).map(|(e, _)| e)
+}
+
+/// Gradient `∂v/∂x` of the current element area (shoelace formula), `[x₀, y₀, x₁, …]`.
+fn area_gradient(x: &[[f64; 2]; 4]) -> [f64; 8] {
+    let mut dv = [0.0; 8];
+    for k in 0..4 {
+        let n = (k + 1) % 4;
+        let p = (k + 3) % 4;
+        dv[2 * k] = 0.5 * (x[n][1] - x[p][1]);
+        dv[2 * k + 1] = 0.5 * (x[p][0] - x[n][0]);
     }
-    let mut e = 0.0;
-    for g in 0..4 {
-        let f = q.deformation_gradient(g, x);
-        e += q.wdet[g] * mat.iso_energy(&f)?;
-    }
-    let v = shoelace(x);
-    if v <= 0.0 {
-        return None;
-    }
-    let r = v / q.area - 1.0;
-    Some(e + 0.5 * mat.kappa * q.area * r * r)
+    dv
 }
 
 /// Element energy and gradient (no Hessian); `None` if the element is inverted.
@@ -193,11 +192,8 @@ pub fn gradient(q: &QuadRef, mat: &NeoHooke, x: &[[f64; 2]; 4]) -> Option<(f64, 
     let r = v / q.area - 1.0;
     energy += 0.5 * mat.kappa * q.area * r * r;
     let kr = mat.kappa * r;
-    for k in 0..4 {
-        let n = (k + 1) % 4;
-        let p = (k + 3) % 4;
-        grad[2 * k] += kr * 0.5 * (x[n][1] - x[p][1]);
-        grad[2 * k + 1] += kr * 0.5 * (x[p][0] - x[n][0]);
+    for (g, dv) in grad.iter_mut().zip(area_gradient(x)) {
+        *g += kr * dv;
     }
     Some((energy, grad))
 }
@@ -275,13 +271,7 @@ pub fn tangent(q: &QuadRef, mat: &NeoHooke, x: &[[f64; 2]; 4]) -> Option<Element
     let V = q.area;
     let r = v / V - 1.0;
     energy += 0.5 * mat.kappa * V * r * r;
-    let mut dv = [0.0; 8];
-    for k in 0..4 {
-        let n = (k + 1) % 4;
-        let p = (k + 3) % 4;
-        dv[2 * k] = 0.5 * (x[n][1] - x[p][1]);
-        dv[2 * k + 1] = 0.5 * (x[p][0] - x[n][0]);
-    }
+    let dv = area_gradient(x);
     let kr = mat.kappa * r;
     let kv = mat.kappa / V;
     for a in 0..8 {

@@ -32,6 +32,15 @@ pub enum LinSolveError {
     Numeric(String),
 }
 
+/// The sparsity pattern as faer's symbolic matrix (checked once per factorisation).
+fn pattern<'a>(
+    n: usize,
+    col_ptr: &'a [usize],
+    row_idx: &'a [usize],
+) -> SymbolicSparseColMatRef<'a, usize> {
+    SymbolicSparseColMatRef::new_checked(n, n, col_ptr, None, row_idx)
+}
+
 /// Solve every right-hand side with `solve` (the triangular solves of a factorisation) on
 /// a copy; write the solutions back and return `true` only if all of them are finite (a
 /// numerically singular factorisation gives infinities or NaNs).
@@ -202,13 +211,7 @@ impl SparseSystem {
     /// positive definite. The default faer heuristic picks the simplicial variant for
     /// these 2D meshes, which measured about 3× slower, so supernodal is forced.
     fn llt_solve(&mut self, rhs: &mut [Vec<f64>]) -> Result<bool, LinSolveError> {
-        let sym = SymbolicSparseColMatRef::new_checked(
-            self.n,
-            self.n,
-            &self.col_ptr,
-            None,
-            &self.row_idx,
-        );
+        let sym = pattern(self.n, &self.col_ptr, &self.row_idx);
         if self.symbolic_llt.is_none() {
             let params = CholeskySymbolicParams {
                 supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
@@ -263,13 +266,7 @@ impl SparseSystem {
     /// (≈ 130) passes, and the curve's time in indefinite factorisations drops by a
     /// fifth against `L B Lᵀ`.
     fn ldlt_solve(&mut self, rhs: &mut [Vec<f64>]) -> Result<bool, LinSolveError> {
-        let sym = SymbolicSparseColMatRef::new_checked(
-            self.n,
-            self.n,
-            &self.col_ptr,
-            None,
-            &self.row_idx,
-        );
+        let sym = pattern(self.n, &self.col_ptr, &self.row_idx);
         let symbolic = self.symbolic_llt.clone().expect("Cholesky tried first");
         let mat = SparseColMatRef::new(sym, &self.values);
         let par = Par::Seq;
@@ -286,27 +283,26 @@ impl SparseSystem {
             Ok(l) => l,
             Err(_) => return Ok(false),
         };
-        let mut out: Vec<Vec<f64>> = rhs.to_vec();
-        for x in out.iter_mut() {
-            let n = x.len();
-            ldlt.solve_in_place_with_conj(
-                Conj::No,
-                MatMut::from_column_major_slice_mut(x, n, 1),
-                par,
-                MemStack::new(buf),
-            );
+        let b = rhs.to_vec();
+        if !solve_all_finite(rhs, |x| {
+            ldlt.solve_in_place_with_conj(Conj::No, x, par, MemStack::new(buf))
+        }) {
+            return Ok(false);
         }
-        for (x, b) in out.iter().zip(rhs.iter()) {
-            let ax = self.mul(x);
-            let r2: f64 = ax.iter().zip(b).map(|(a, b)| (a - b) * (a - b)).sum();
+        let accurate = rhs.iter().zip(&b).all(|(x, b)| {
+            let r2: f64 = self
+                .mul(x)
+                .iter()
+                .zip(b)
+                .map(|(a, b)| (a - b) * (a - b))
+                .sum();
             let b2: f64 = b.iter().map(|v| v * v).sum();
-            let accurate = r2 <= 1e-16 * b2; // false for NaN
-            if !accurate {
-                return Ok(false);
-            }
+            r2 <= 1e-16 * b2
+        });
+        if !accurate {
+            rhs.clone_from_slice(&b);
         }
-        rhs.clone_from_slice(&out);
-        Ok(true)
+        Ok(accurate)
     }
 
     /// Sparse symmetric-indefinite `L B Lᵀ` factorisation (Bunch–Kaufman pivoting inside
@@ -316,13 +312,7 @@ impl SparseSystem {
     /// as LU at about the cost of a Cholesky factorisation (measured: one sparse LU of these
     /// matrices costs 5–10 Cholesky factorisations).
     fn lblt_solve(&mut self, rhs: &mut [Vec<f64>]) -> Result<bool, LinSolveError> {
-        let sym = SymbolicSparseColMatRef::new_checked(
-            self.n,
-            self.n,
-            &self.col_ptr,
-            None,
-            &self.row_idx,
-        );
+        let sym = pattern(self.n, &self.col_ptr, &self.row_idx);
         let symbolic = self.symbolic_llt.clone().expect("Cholesky tried first");
         let mat = SparseColMatRef::new(sym, &self.values);
         let par = Par::Seq;
@@ -351,13 +341,7 @@ impl SparseSystem {
     /// and the work memory are reused between factorisations (fresh allocations measured
     /// 15 % of a friction curve in page faults).
     pub fn lu_solve_multi(&mut self, rhs: &mut [Vec<f64>]) -> Result<(), LinSolveError> {
-        let sym = SymbolicSparseColMatRef::new_checked(
-            self.n,
-            self.n,
-            &self.col_ptr,
-            None,
-            &self.row_idx,
-        );
+        let sym = pattern(self.n, &self.col_ptr, &self.row_idx);
         let mat = SparseColMatRef::new(sym, &self.values);
         let par = Par::Seq;
         if self.symbolic.is_none() {

@@ -119,17 +119,6 @@ impl NeoHooke {
         })
     }
 
-    /// Isochoric energy density only; `None` when `det F ≤ 0`.
-    pub fn iso_energy(&self, f: &[[f64; 2]; 2]) -> Option<f64> {
-        let j = f[0][0] * f[1][1] - f[0][1] * f[1][0];
-        if j <= 0.0 || !j.is_finite() {
-            return None;
-        }
-        let i1 =
-            f[0][0] * f[0][0] + f[0][1] * f[0][1] + f[1][0] * f[1][0] + f[1][1] * f[1][1] + 1.0;
-        Some(0.5 * self.g * (j_minus_two_thirds(j) * i1 - 3.0))
-    }
-
     /// Isochoric energy density, stress and (optionally filled) tangent; `None` when
     /// `det F ≤ 0`.
     pub fn iso_response(&self, f: &[[f64; 2]; 2], want_tangent: bool) -> Option<IsoResponse> {

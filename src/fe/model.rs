@@ -48,6 +48,16 @@ pub struct SlipHistory {
     pub anchor_x: f64,
 }
 
+impl SlipHistory {
+    /// No elastic slip, anchored at `x`: a node that is free or has just touched.
+    fn fresh(x: f64) -> Self {
+        Self {
+            elastic: 0.0,
+            anchor_x: x,
+        }
+    }
+}
+
 /// Friction law in solver units (`G = 1`, lengths in λ).
 #[derive(Clone, Copy, Debug)]
 struct FrictionLaw {
@@ -100,7 +110,7 @@ enum Role {
 }
 
 /// Mutable solution state.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct State {
     /// Current node positions.
     pub x: Vec<[f64; 2]>,
@@ -266,10 +276,7 @@ impl Model {
             self.mesh
                 .bottom
                 .iter()
-                .map(|&n| SlipHistory {
-                    elastic: 0.0,
-                    anchor_x: self.mesh.nodes[n][0],
-                })
+                .map(|&n| SlipHistory::fresh(self.mesh.nodes[n][0]))
                 .collect()
         } else {
             Vec::new()
@@ -405,12 +412,7 @@ impl Model {
     pub fn assemble(&mut self, st: &State, with_matrix: bool) -> Option<Forces> {
         if !with_matrix {
             if let Some((c, f)) = &self.cache {
-                if c.d == st.d
-                    && c.dx == st.dx
-                    && c.active == st.active
-                    && c.x == st.x
-                    && c.slip == st.slip
-                {
+                if c == st {
                     return Some(f.clone());
                 }
             }
@@ -656,7 +658,7 @@ impl Model {
             dell[2 * j] = u;
             dell[1] = [dell[1][0] - u[0], dell[1][1] - u[1]];
         }
-        let normal = (grad[2 * n + 1] - s * grad[2 * n]) / w;
+        let [normal, _] = self.node_contact_force(st, grad, n);
         let (regime, limit) = if normal <= 0.0 {
             (Regime::Open, 0.0)
         } else if law.mu * normal <= law.tau_max * ell {
@@ -691,7 +693,7 @@ impl Model {
             };
             st.slip[k] = SlipHistory {
                 elastic,
-                anchor_x: st.x[n][0],
+                ..SlipHistory::fresh(st.x[n][0])
             };
         }
     }
@@ -702,11 +704,7 @@ impl Model {
         st.active[k] = true;
         self.project_closest(st, k);
         if self.friction.is_some() {
-            let n = self.mesh.bottom[k];
-            st.slip[k] = SlipHistory {
-                elastic: 0.0,
-                anchor_x: st.x[n][0],
-            };
+            st.slip[k] = SlipHistory::fresh(st.x[self.mesh.bottom[k]][0]);
         }
     }
 
@@ -723,12 +721,17 @@ impl Model {
                 if !st.active[k] {
                     return [0.0; 2];
                 }
-                let s = self.contact_slope(st, n);
-                let w = (1.0 + s * s).sqrt();
-                let (gx, gy) = (grad[2 * n], grad[2 * n + 1]);
-                [(gy - s * gx) / w, (gx + s * gy) / w]
+                self.node_contact_force(st, grad, n)
             })
             .collect()
+    }
+
+    /// `[N, T]` of contact-face node `n` as if it were in contact ([`Self::contact_forces`]).
+    fn node_contact_force(&self, st: &State, grad: &[f64], n: usize) -> [f64; 2] {
+        let s = self.contact_slope(st, n);
+        let w = (1.0 + s * s).sqrt();
+        let (gx, gy) = (grad[2 * n], grad[2 * n + 1]);
+        [(gy - s * gx) / w, (gx + s * gy) / w]
     }
 
     /// Normal contact force `N` of every contact-face node ([`Self::contact_forces`]).

@@ -1,9 +1,9 @@
 //! Newton's method with line search, the contact active-set loop and adaptive load
 //! stepping with step cutting.
 //!
-//! * Newton: consistent tangent of the reduced problem, sparse Cholesky (symmetric
-//!   indefinite `L B Lᵀ` if the tangent is not positive definite, see
-//!   [`super::linsys`]; symbolic factorisations reused), backtracking line search on
+//! * Newton: consistent tangent of the reduced problem, sparse Cholesky (`L D Lᵀ`,
+//!   then the pivoting `L B Lᵀ` if the tangent is not positive definite, see
+//!   [`super::linsys`]; symbolic factorisations reused; LU with friction), backtracking line search on
 //!   the energy `Π` (Armijo,
 //!   `c = 10⁻⁴`); if the Newton direction is not a descent direction the residual norm
 //!   is used instead. Inverted trial configurations (`J ≤ 0`) have `Π = +∞` and are
@@ -83,8 +83,9 @@ impl StepFail {
     }
 }
 
-/// Solve the assembled tangent for each right-hand side in place: Cholesky (`L B Lᵀ`, then
-/// LU as fallbacks) for the symmetric frictionless tangent, LU with friction.
+/// Solve the assembled tangent for each right-hand side in place: Cholesky (`L D Lᵀ`,
+/// `L B Lᵀ`, then LU as fallbacks) for the symmetric frictionless tangent, LU with
+/// friction.
 fn linear_solve(
     model: &mut Model,
     rhs: &mut [Vec<f64>],
@@ -212,7 +213,6 @@ pub(crate) fn newton_edge(
     gap_tol: f64,
     rtol: f64,
 ) -> Result<usize, StepFail> {
-    let node = model.mesh.bottom[k];
     let mut last_res = f64::NAN;
     let mut kscale = 0.0;
     for it in 0..=opts.max_newton_iterations {
@@ -224,7 +224,7 @@ pub(crate) fn newton_edge(
                 residual: last_res,
             });
         };
-        let (c, dc) = model.edge_constraint(st, k);
+        let (c, _) = model.edge_constraint(st, k);
         let res = inf_norm(&f.resid);
         last_res = res;
         let atol = opts.residual_atol * (model.mat.g + model.mat.kappa);
@@ -260,8 +260,7 @@ pub(crate) fn newton_edge(
             });
         }
         let (z1, z2) = (&rhs[0], &rhs[1]);
-        let dcz = |z: &[f64]| dc[0] * z[2 * node] + dc[1] * z[2 * node + 1];
-        let den = dcz(z2);
+        let den = gap_rate(model, st, k, z2);
         if den.abs() < 1e-300 {
             return Err(StepFail::Diverged {
                 iteration: it,
@@ -269,7 +268,7 @@ pub(crate) fn newton_edge(
                 reason: "edge constraint insensitive to the slab displacement".into(),
             });
         }
-        let dd = -(c + dcz(z1)) / den;
+        let dd = -(c + gap_rate(model, st, k, z1)) / den;
         let dq: Vec<f64> = z1.iter().zip(z2).map(|(a, b)| a + b * dd).collect();
         let mut alpha = 1.0;
         let mut accepted = None;
@@ -508,8 +507,9 @@ fn load_tangent(model: &mut Model, st: &State) -> Option<Vec<f64>> {
     Some(z)
 }
 
-/// Rate `∂g_k/∂d` at which the gap of the free contact-face node `k` closes along the
-/// load tangent `z` ([`load_tangent`]).
+/// Change `∇g_k · z` of the gap of the free contact-face node `k` along the slot vector
+/// `z`: with the load tangent `z` ([`load_tangent`]) the rate `∂g_k/∂d` at which it
+/// closes.
 fn gap_rate(model: &Model, st: &State, k: usize, z: &[f64]) -> f64 {
     let node = model.mesh.bottom[k];
     let (_, dc) = model.edge_constraint(st, k);
@@ -813,6 +813,8 @@ pub(crate) fn trace(
         last_grad = grad;
         dd_guess = st.d - cur.d;
         if let Some(e) = extrapolated {
+            // bounded so that one odd event (a node released and re-touching) cannot
+            // throw the next prediction far off
             event_ratio = (dd_guess / e).clamp(0.5, 4.0);
         }
         prev = Some(std::mem::replace(&mut cur, st));

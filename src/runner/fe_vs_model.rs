@@ -57,11 +57,13 @@ pub(super) fn run(
         .map(|&m| format!("p_over_estar_{}", model_key(m)))
         .collect();
     header.extend(columns.iter().map(String::as_str));
-    let compare_column = s
+    // the WNL line with the comparison coefficient set, e.g. `wnl_ours_bracket_sq`
+    let compare_key = s
         .models
         .compare_coefficients
         .as_ref()
-        .map(|c| format!("p_over_estar_wnl_{}", c.replace('-', "_")));
+        .map(|c| format!("wnl_{}", c.replace('-', "_")));
+    let compare_column = compare_key.as_ref().map(|k| format!("p_over_estar_{k}"));
     if let Some(c) = &compare_column {
         header.push(c);
     }
@@ -86,11 +88,6 @@ pub(super) fn run(
         mse_header.push(format!("mse_{}", model_key(m)));
         mse_header.push(format!("max_abs_dev_{}", model_key(m)));
     }
-    let compare_key = s
-        .models
-        .compare_coefficients
-        .as_ref()
-        .map(|c| format!("wnl_{}", c.replace('-', "_")));
     if let Some(key) = &compare_key {
         mse_header.push(format!("mse_{key}"));
         mse_header.push(format!("max_abs_dev_{key}"));
