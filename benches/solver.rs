@@ -19,14 +19,13 @@ fn curve(ar: f64, kin: Kinematics, mesh: MeshLevel) -> usize {
 
 fn frictional_curve(ar: f64, kin: Kinematics, mesh: MeshLevel, tau_max_over_estar: f64) -> usize {
     let pb = LayerProblem {
-        aspect_ratio: ar,
         kinematics: kin,
         interface: Interface::coulomb_orowan(
             wavy::defaults::friction_coefficient(),
             tau_max_over_estar,
             wavy::defaults::elastic_slip_over_element(),
         ),
-        ..Default::default()
+        ..wavy::defaults::layer_problem(ar)
     };
     let opts = SolveOptions {
         mesh,

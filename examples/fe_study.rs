@@ -15,9 +15,8 @@ fn env(name: &str, default: &str) -> String {
 fn calibrate(levels: &[usize], ny_over_nx: f64, opts: &SolveOptions) {
     let ar = 0.01;
     let pb = LayerProblem {
-        aspect_ratio: ar,
         kinematics: Kinematics::Linear,
-        ..Default::default()
+        ..wavy::defaults::layer_problem(ar)
     };
     for &nx in levels {
         let ny = ((nx as f64 * ny_over_nx).round() as usize).max(1);
@@ -76,13 +75,12 @@ fn main() {
         return;
     }
     let pb = LayerProblem {
-        aspect_ratio: ar,
         kinematics: if env("KIN", "finite") == "linear" {
             Kinematics::Linear
         } else {
             Kinematics::Finite
         },
-        ..Default::default()
+        ..wavy::defaults::layer_problem(ar)
     };
     let a_values: Vec<f64> = (0..8).map(|i| 0.1 + 0.05 * i as f64).collect();
     let mut curves = Vec::new();

@@ -1,15 +1,15 @@
-//! The open parameters the paper does not state, with our defaults (REPLICATION.md R7).
+//! The open parameters the paper does not state, with our defaults (docs/replication.md R7).
 //!
 //! This is the one place they live: spec fields default to these functions, and the
 //! command line's flag defaults quote the same values.
 
 /// Layer thickness over wavelength, h/λ = 1: periodic fields decay like exp(−2πy/λ), so a
-/// layer one wavelength thick is practically a half-space for the oscillating part (R7).
+/// layer one wavelength thick is practically a half-space for the oscillating part (docs/replication.md R7).
 pub fn thickness_over_lambda() -> f64 {
     1.0
 }
 
-/// Bulk over shear modulus κ/G = 1000 (ν ≈ 0.4995, E* ≈ 3.996 G) (R7).
+/// Bulk over shear modulus κ/G = 1000 (ν ≈ 0.4995, E* ≈ 3.996 G) (docs/replication.md R7).
 pub fn kappa_over_g() -> f64 {
     1000.0
 }
@@ -21,7 +21,7 @@ pub fn fe_estar_mpa() -> f64 {
 }
 
 /// Friction coefficient μ = 1: with τ_max ≤ 0.2 MPa the Orowan cap governs except near the
-/// contact edges (R7).
+/// contact edges (docs/replication.md R7).
 pub fn friction_coefficient() -> f64 {
     1.0
 }
@@ -31,4 +31,17 @@ pub fn friction_coefficient() -> f64 {
 /// FE uses "penalty-based Coulomb–Orowan friction" and states no value; R6).
 pub fn elastic_slip_over_element() -> f64 {
     0.005
+}
+
+/// The frictionless, finite-strain layer problem at aspect ratio Δ/λ with every other
+/// parameter at its default above (the core takes its parameters as arguments; this is
+/// where callers that have no spec get them).
+pub fn layer_problem(aspect_ratio: f64) -> crate::fe::LayerProblem {
+    crate::fe::LayerProblem {
+        aspect_ratio,
+        thickness_over_lambda: thickness_over_lambda(),
+        kappa_over_g: kappa_over_g(),
+        kinematics: crate::fe::Kinematics::Finite,
+        interface: crate::fe::Interface::Frictionless,
+    }
 }

@@ -17,7 +17,6 @@ use crate::models::wnl::quadratic_monomials;
 use crate::models::{Coefficients, FitDomain, PressureLaw, Reading, Westergaard, Wnl};
 use faer::prelude::*;
 use faer::Mat;
-use std::f64::consts::PI;
 use thiserror::Error;
 
 /// One point of one pressure–area curve.
@@ -55,15 +54,12 @@ pub enum FitError {
     Svd,
 }
 
-/// The regressors of sample `s` under `reading`: columns 0–5 multiply b₀…b₅, 6–11 a₀…a₅.
+/// The regressors of sample `s` under `reading`: columns 0–5 multiply b₀…b₅, 6–11 a₀…a₅
+/// (p̄/E* = p̄_W/E*·B + s(x)·A, [`Reading::a_shape`]).
 fn regressors(s: &CurveSample, reading: Reading) -> [f64; 12] {
     let x = s.a_over_lambda;
     let p_w = Westergaard::new(s.aspect_ratio).p_over_estar(x);
-    let shape = match reading {
-        Reading::BracketSq => p_w * x * (PI * x).cos().powi(2),
-        Reading::Bracket2x => p_w * x * (2.0 * PI * x).cos(),
-        Reading::Literal => x * (PI * x).cos().powi(2),
-    };
+    let shape = reading.a_shape(x, p_w);
     let m = quadratic_monomials(s.aspect_ratio, s.tau_max_mpa);
     let mut row = [0.0; 12];
     for k in 0..6 {

@@ -1,13 +1,18 @@
 //! wavy: the contact area of a soft solid on a rigid wavy surface.
 //!
-//! The core (no I/O): [`models`] (Westergaard and the WNL model, with their inverse),
-//! [`fe`] (the finite-strain finite-element solver), [`fit`] (re-deriving Table 1).
-//! On top: [`spec`] (TOML experiment specs), [`runner`] (scenes → tables and figures, sweeps),
-//! [`plot`] (deterministic SVG), [`numfmt`] (the one float formatter of every output),
-//! [`cli`] (the command line's argument validation).
+//! Layers, each using only the ones above it in this list (`tests/layers.rs` enforces it;
+//! `docs/architecture.md` draws it):
+//! - the core, with no I/O: [`models`] (Westergaard and the WNL model, their coefficient sets
+//!   and inverse), [`fe`] (the finite-strain finite-element solver), [`fit`] (re-deriving
+//!   Table 1);
+//! - output primitives: [`numfmt`] (the one float formatter), [`table`] (tables, CSV,
+//!   comparison), [`plot`] (deterministic SVG);
+//! - [`defaults`] (the open physical parameters) and [`spec`] (TOML field types and checks);
+//! - [`runner`] (the scene registry, scenes → tables and figures, sweeps, atomic writes, check).
+//!
+//! The command line lives in the binary (`src/main.rs`, `src/cli/`), so no library module can
+//! depend on it.
 
-pub mod cli;
-pub mod coefficient_sets;
 pub mod defaults;
 pub mod fe;
 pub mod fit;

@@ -372,3 +372,37 @@ fn solve_with_friction_prints_the_curve_and_rejects_bad_flags() {
         assert!(stdout(&o).is_empty());
     }
 }
+
+/// A reader that closes the pipe early (`wavy eval … | head -1`) ends every command quietly
+/// with exit 0: no panic, no error message.
+#[test]
+fn closed_stdout_pipe_ends_quietly_with_exit_0() {
+    use std::process::Stdio;
+    let many: Vec<String> = (0..20_000)
+        .map(|i| format!("{}", i as f64 / 40_000.0))
+        .collect();
+    let mut eval = vec!["eval", "--model", "wnl", "--ar", "0.1", "--a-over-lambda"];
+    eval.extend(many.iter().map(String::as_str));
+    let solve = [
+        "solve",
+        "--ar",
+        "0.1",
+        "--mesh",
+        "16",
+        "--until-a-over-lambda",
+        "0.2",
+    ];
+    for args in [&eval[..], &solve[..]] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_wavy"))
+            .args(args)
+            .current_dir(here())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        drop(child.stdout.take()); // the reader goes away before the first line
+        let o = child.wait_with_output().unwrap();
+        assert_eq!(o.status.code(), Some(0), "{}: {}", args[0], stderr(&o));
+        assert!(stderr(&o).is_empty(), "{}: {}", args[0], stderr(&o));
+    }
+}

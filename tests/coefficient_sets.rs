@@ -1,7 +1,7 @@
 //! The refit coefficient sets in `src/coefficient_sets.rs` are the golden refit of
 //! `expected/table1_refit.csv` (written by `experiments/table1_refit.toml`, six significant
-//! digits), and the paper's set is Table 1 (REPLICATION.md R5).
-use wavy::coefficient_sets::by_name;
+//! digits), and the paper's set is Table 1 (docs/replication.md R5).
+use wavy::models::CoefficientSet;
 
 #[test]
 fn refit_sets_equal_the_golden_refit_table() {
@@ -19,7 +19,10 @@ fn refit_sets_equal_the_golden_refit_table() {
                 "paper" => "paper-table1".to_string(),
                 c => c.replace('_', "-"),
             };
-            let c = by_name(&set).unwrap_or_else(|| panic!("no coefficient set {set}"));
+            let c = set
+                .parse::<CoefficientSet>()
+                .unwrap_or_else(|e| panic!("{e}"))
+                .coefficients();
             let ours = if letter == "a" { c.a[i] } else { c.b[i] };
             let golden: f64 = value.parse().unwrap();
             // six significant digits in the file

@@ -18,10 +18,7 @@ fn a_values() -> Vec<f64> {
 }
 
 fn check(aspect_ratio: f64) {
-    let pb = LayerProblem {
-        aspect_ratio,
-        ..Default::default()
-    };
+    let pb = wavy::defaults::layer_problem(aspect_ratio);
     let t = mesh_convergence(&pb, &SolveOptions::default(), &a_values()).expect("three curves");
     eprintln!(
         "AR {aspect_ratio}: global observed order {:.2}",

@@ -6,9 +6,8 @@ use wavy::fe::*;
 
 fn check(kin: Kinematics, ar: f64) {
     let pb = LayerProblem {
-        aspect_ratio: ar,
         kinematics: kin,
-        ..Default::default()
+        ..wavy::defaults::layer_problem(ar)
     };
     let opts = SolveOptions {
         mesh: MeshLevel::Coarse,

@@ -99,9 +99,8 @@ use wavy::fe::{solve_curve, Curve, Interface, LayerProblem, MeshLevel, SolveOpti
 
 fn wavy_curve(ar: f64, tau_max_over_estar: f64, mesh: MeshLevel) -> Curve {
     let pb = LayerProblem {
-        aspect_ratio: ar,
         interface: Interface::coulomb_orowan(1.0, tau_max_over_estar, 0.005),
-        ..Default::default()
+        ..wavy::defaults::layer_problem(ar)
     };
     let opts = SolveOptions {
         mesh,

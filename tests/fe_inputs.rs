@@ -9,7 +9,7 @@ fn err(pb: LayerProblem, opts: SolveOptions) -> SolveError {
 
 #[test]
 fn invalid_inputs_are_rejected_with_field_names() {
-    let ok = LayerProblem::default();
+    let ok = wavy::defaults::layer_problem(0.1);
     let o = SolveOptions::default();
     let cases = [
         (
@@ -100,9 +100,8 @@ fn zero_shear_strength_builds_no_friction() {
         ..Default::default()
     };
     let pb = |interface| LayerProblem {
-        aspect_ratio: 0.1,
         interface,
-        ..Default::default()
+        ..wavy::defaults::layer_problem(0.1)
     };
     let m = build_model(&pb(Interface::coulomb_orowan(1.0, 0.0, 0.005)), &opts);
     assert!(m.is_potential() && m.elastic_slip_limit().is_none());
@@ -146,7 +145,7 @@ fn invalid_friction_inputs_name_the_field() {
     ] {
         let pb = LayerProblem {
             interface: Interface::CoulombOrowan(law),
-            ..Default::default()
+            ..wavy::defaults::layer_problem(0.1)
         };
         match err(pb, SolveOptions::default()) {
             SolveError::InvalidInput { field: f, .. } => assert_eq!(f, field),

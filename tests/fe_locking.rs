@@ -7,10 +7,9 @@ use wavy::fe::*;
 
 fn curve(kappa_over_g: f64, kin: Kinematics, ar: f64, mesh: MeshLevel) -> Curve {
     let pb = LayerProblem {
-        aspect_ratio: ar,
         kappa_over_g,
         kinematics: kin,
-        ..Default::default()
+        ..wavy::defaults::layer_problem(ar)
     };
     let opts = SolveOptions {
         mesh,

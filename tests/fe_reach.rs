@@ -8,10 +8,7 @@ use wavy::fe::*;
 
 #[test]
 fn ar_0_18_reaches_045_at_default_mesh() {
-    let pb = LayerProblem {
-        aspect_ratio: 0.18,
-        ..Default::default()
-    };
+    let pb = wavy::defaults::layer_problem(0.18);
     let c = solve_curve(&pb, &SolveOptions::default(), &mut |_| {}).expect("curve");
     let last = c.points.last().unwrap();
     assert!(last.a_over_lambda >= 0.45, "reached {}", last.a_over_lambda);

@@ -12,9 +12,8 @@ fn finite_tends_to_linear_at_small_aspect_ratio() {
     };
     let run = |kin| {
         let pb = LayerProblem {
-            aspect_ratio: 0.001,
             kinematics: kin,
-            ..Default::default()
+            ..wavy::defaults::layer_problem(0.001)
         };
         solve_curve(&pb, &opts, &mut |_| {}).expect("curve")
     };

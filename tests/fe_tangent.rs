@@ -136,10 +136,9 @@ fn inverted_element_is_rejected() {
 fn global_tangent_with_contact_elimination_matches_central_differences() {
     for kin in [Kinematics::Finite, Kinematics::Linear] {
         let pb = LayerProblem {
-            aspect_ratio: 0.2,
             kappa_over_g: 50.0,
             kinematics: kin,
-            ..Default::default()
+            ..wavy::defaults::layer_problem(0.2)
         };
         let opts = SolveOptions {
             mesh: MeshLevel::Elements { nx: 5, ny: 3 },
@@ -235,11 +234,10 @@ fn friction_tangent_matches_central_differences() {
     for kin in [Kinematics::Finite, Kinematics::Linear] {
         for (name, mu, tau) in regimes {
             let pb = LayerProblem {
-                aspect_ratio: 0.2,
                 kappa_over_g: 50.0,
                 kinematics: kin,
                 interface: Interface::coulomb_orowan(mu, tau, 0.005),
-                ..Default::default()
+                ..wavy::defaults::layer_problem(0.2)
             };
             let frictionless = LayerProblem {
                 interface: Interface::Frictionless,

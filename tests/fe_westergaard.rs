@@ -12,10 +12,9 @@ fn westergaard(ar: f64, a: f64) -> f64 {
 fn max_error(kappa_over_g: f64) -> (f64, usize) {
     let ar = 0.01;
     let pb = LayerProblem {
-        aspect_ratio: ar,
         kappa_over_g,
         kinematics: Kinematics::Linear,
-        ..Default::default()
+        ..wavy::defaults::layer_problem(ar)
     };
     let curve = solve_curve(&pb, &SolveOptions::default(), &mut |_| {}).expect("linear curve");
     let mut worst = 0.0_f64;

@@ -1,4 +1,4 @@
-//! The analytic models against numbers computed by hand from REPLICATION.md R4/R5 (Table 1).
+//! The analytic models against numbers computed by hand from docs/replication.md R4/R5 (Table 1).
 
 use std::f64::consts::PI;
 use wavy::models::{

@@ -20,6 +20,83 @@
 //! * along `Y`: geometric layers whose first (bottom) layer is
 //!   `first_layer_over_dx × (½/nx)` thick, growing toward the bonded face.
 
+/// Mesh resolution. Each named level has [`MeshLevel::REFINEMENT_RATIO`] times the
+/// element counts of the previous one (the three levels of the convergence study).
+///
+/// The default is the coarsest of these whose Richardson error estimate meets the
+/// 0.5 % accuracy target of `p̄(a)` over a/λ ∈ [0.1, 0.45] with a margin of about two
+/// (measured ≤ 0.19 % at AR = 0.1 and ≤ 0.26 % at AR = 0.3,
+/// `tests/fe_convergence.rs`): no finer mesh than the tolerance asks. A 24 × 12 mesh
+/// does not reach a/λ = 0.45 at AR = 0.3 (Newton stalls near a/λ = 0.41).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum MeshLevel {
+    /// 32 × 16 elements.
+    Coarse,
+    /// 48 × 24 elements.
+    #[default]
+    Default,
+    /// 72 × 36 elements.
+    Fine,
+    /// Explicit counts along the contact face (`nx`) and the thickness (`ny`).
+    Elements {
+        /// Elements along `X ∈ [0, ½]`.
+        nx: usize,
+        /// Elements across the thickness.
+        ny: usize,
+    },
+}
+
+impl MeshLevel {
+    /// Ratio of the element counts of consecutive named levels.
+    pub const REFINEMENT_RATIO: f64 = 1.5;
+
+    /// Element counts `(nx, ny)`.
+    pub fn counts(self) -> (usize, usize) {
+        match self {
+            MeshLevel::Coarse => (32, 16),
+            MeshLevel::Default => (48, 24),
+            MeshLevel::Fine => (72, 36),
+            MeshLevel::Elements { nx, ny } => (nx, ny),
+        }
+    }
+}
+
+/// A mesh resolution that is not one of the names or an element count in range.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("value {value} is out of range; allowed: {}", MeshLevel::ALLOWED)]
+pub struct MeshLevelParseError {
+    /// The text that was given.
+    pub value: String,
+}
+
+impl MeshLevel {
+    /// Element counts along the face accepted by [`MeshLevel::from_str`].
+    pub const ELEMENTS_ALONG_FACE: std::ops::RangeInclusive<usize> = 4..=2048;
+
+    /// What [`MeshLevel::from_str`] accepts, in words.
+    pub const ALLOWED: &'static str = "coarse (32×16), default (48×24), fine (72×36), or N elements along the face (4 to 2048; N/2 across the thickness)";
+}
+
+impl std::str::FromStr for MeshLevel {
+    type Err = MeshLevelParseError;
+    /// `coarse`, `default`, `fine`, or `N` elements along the face (`N/2`, at least 2,
+    /// across the thickness).
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "coarse" => Ok(MeshLevel::Coarse),
+            "default" => Ok(MeshLevel::Default),
+            "fine" => Ok(MeshLevel::Fine),
+            n => match n.parse::<usize>() {
+                Ok(nx) if Self::ELEMENTS_ALONG_FACE.contains(&nx) => Ok(MeshLevel::Elements {
+                    nx,
+                    ny: (nx / 2).max(2),
+                }),
+                _ => Err(MeshLevelParseError { value: s.into() }),
+            },
+        }
+    }
+}
+
 /// Grading parameters.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Grading {

@@ -32,6 +32,7 @@
 
 pub mod contact;
 pub mod convergence;
+pub mod curve;
 pub mod element;
 pub mod error;
 pub mod linsys;
@@ -46,14 +47,16 @@ pub use convergence::{
     convergence_table, mesh_convergence, mesh_convergence_levels, p_at, ConvergenceRow,
     ConvergenceTable,
 };
+pub use curve::{Curve, CurvePoint, CurvePointParseError, DeformedState};
 pub use error::{CurveFailure, SolveError};
 pub use material::estar_over_g;
-pub use mesh::Grading;
+pub use mesh::{Grading, MeshLevel, MeshLevelParseError};
 
 use serde::{Deserialize, Serialize};
 
-/// Kinematic model.
+/// Kinematic model; named `finite` and `linear` in specs and on the command line.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum Kinematics {
     /// Finite deformation, compressible neo-Hookean, contact in the current
     /// configuration.
@@ -64,44 +67,31 @@ pub enum Kinematics {
     Linear,
 }
 
-/// Mesh resolution. Each named level has [`MeshLevel::REFINEMENT_RATIO`] times the
-/// element counts of the previous one (the three levels of the convergence study).
-///
-/// The default is the coarsest of these whose Richardson error estimate meets the
-/// 0.5 % accuracy target of `p̄(a)` over a/λ ∈ [0.1, 0.45] with a margin of about two
-/// (measured ≤ 0.19 % at AR = 0.1 and ≤ 0.26 % at AR = 0.3,
-/// `tests/fe_convergence.rs`): no finer mesh than the tolerance asks. A 24 × 12 mesh
-/// does not reach a/λ = 0.45 at AR = 0.3 (Newton stalls near a/λ = 0.41).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub enum MeshLevel {
-    /// 32 × 16 elements.
-    Coarse,
-    /// 48 × 24 elements.
-    #[default]
-    Default,
-    /// 72 × 36 elements.
-    Fine,
-    /// Explicit counts along the contact face (`nx`) and the thickness (`ny`).
-    Elements {
-        /// Elements along `X ∈ [0, ½]`.
-        nx: usize,
-        /// Elements across the thickness.
-        ny: usize,
-    },
+impl Kinematics {
+    /// Every kinematic model, in the order they are listed in messages.
+    pub const ALL: [Kinematics; 2] = [Kinematics::Finite, Kinematics::Linear];
+
+    /// The name used in specs, on the command line and in outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            Kinematics::Finite => "finite",
+            Kinematics::Linear => "linear",
+        }
+    }
 }
 
-impl MeshLevel {
-    /// Ratio of the element counts of consecutive named levels.
-    pub const REFINEMENT_RATIO: f64 = 1.5;
+/// A kinematics name that is neither `finite` nor `linear`.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown kinematics `{0}`; allowed: finite, linear")]
+pub struct KinematicsParseError(pub String);
 
-    /// Element counts `(nx, ny)`.
-    pub fn counts(self) -> (usize, usize) {
-        match self {
-            MeshLevel::Coarse => (32, 16),
-            MeshLevel::Default => (48, 24),
-            MeshLevel::Fine => (72, 36),
-            MeshLevel::Elements { nx, ny } => (nx, ny),
-        }
+impl std::str::FromStr for Kinematics {
+    type Err = KinematicsParseError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Kinematics::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| KinematicsParseError(s.into()))
     }
 }
 
@@ -118,18 +108,6 @@ pub struct LayerProblem {
     pub kinematics: Kinematics,
     /// Interface law.
     pub interface: Interface,
-}
-
-impl Default for LayerProblem {
-    fn default() -> Self {
-        Self {
-            aspect_ratio: 0.1,
-            thickness_over_lambda: crate::defaults::thickness_over_lambda(),
-            kappa_over_g: crate::defaults::kappa_over_g(),
-            kinematics: Kinematics::Finite,
-            interface: Interface::Frictionless,
-        }
-    }
 }
 
 /// Rule placing the contact edge `a` inside `[x_{k−1}, x_k]` (current positions) at an
@@ -262,57 +240,6 @@ impl Default for SolveOptions {
             multiplier_rtol: 1e-9,
             gap_tolerance_over_amplitude: 1e-10,
         }
-    }
-}
-
-/// One converged point of the load curve.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct CurvePoint {
-    /// Contact half-width `a/λ` (current configuration).
-    pub a_over_lambda: f64,
-    /// Mean pressure from the contact forces: `Σ_i λ_i / (λ/2) / E*`.
-    pub p_over_estar: f64,
-    /// Mean pressure from the slab reaction: `−Σ_top ∂Π/∂y / (λ/2) / E*`.
-    pub p_over_estar_reaction: f64,
-    /// Slab displacement `d/λ`.
-    pub slab_displacement_over_lambda: f64,
-    /// Newton iterations spent on this step (all active-set passes).
-    pub newton_iterations: usize,
-    /// Contact-face nodes in contact.
-    pub active_nodes: usize,
-}
-
-/// Deformed mesh of the last converged state.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct DeformedState {
-    /// Current node positions (units of λ).
-    pub nodes: Vec<[f64; 2]>,
-    /// Quads (node ids, counter-clockwise).
-    pub quads: Vec<[usize; 4]>,
-    /// Contact-face node ids in order of increasing reference `X`.
-    pub bottom: Vec<usize>,
-    /// Normal contact pressure `p/E*` per contact-face node: the normal contact force
-    /// over the node's tributary length on the deformed face (0 on free nodes).
-    pub contact_pressure_over_estar: Vec<f64>,
-    /// Tangential contact traction `τ/E*` per contact-face node along the indenter's
-    /// tangent `(1, y_s')/w` (the friction traction; 0 when frictionless and on free
-    /// nodes).
-    pub contact_shear_over_estar: Vec<f64>,
-}
-
-/// A computed load curve.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Curve {
-    /// Converged points, in loading order.
-    pub points: Vec<CurvePoint>,
-    /// Last converged state.
-    pub final_state: DeformedState,
-}
-
-impl Curve {
-    /// `p̄/E*` interpolated at `a/λ` (see [`p_at`]).
-    pub fn p_at(&self, a_over_lambda: f64) -> Option<f64> {
-        p_at(&self.points, a_over_lambda)
     }
 }
 

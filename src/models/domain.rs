@@ -1,4 +1,4 @@
-//! The parameter domain the WNL polynomials were fitted on (REPLICATION.md R5).
+//! The parameter domain the WNL polynomials were fitted on (docs/replication.md R5).
 
 /// A rectangle in (AR, τ_max) on which correction coefficients were fitted.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -4,13 +4,15 @@
 //! (a/λ ∈ [0, ½], ½ = full contact), the mean pressure as `p_over_estar` (p̄/E*), the
 //! waviness as the aspect ratio AR = Δ/λ. The one dimensional input is the interfacial
 //! shear strength τ_max, in MPa, because the paper's correction polynomials take it so
-//! (REPLICATION.md R5, R9).
+//! (docs/replication.md R5, R9).
 
+pub mod coefficient_sets;
 pub mod domain;
 pub mod inverse;
 pub mod westergaard;
 pub mod wnl;
 
+pub use coefficient_sets::CoefficientSet;
 pub use domain::FitDomain;
 pub use inverse::{a_over_lambda_at, InverseError};
 pub use westergaard::Westergaard;
@@ -24,6 +26,42 @@ pub trait PressureLaw {
     /// p̄/E* at full contact (a/λ = ½).
     fn full_contact_p_over_estar(&self) -> f64 {
         self.p_over_estar(0.5)
+    }
+}
+
+/// A model law by name (`westergaard`, `wnl`), as specs and the command line select it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ModelKind {
+    Westergaard,
+    Wnl,
+}
+
+impl ModelKind {
+    /// Every law, in the order they are listed in messages.
+    pub const ALL: [ModelKind; 2] = [ModelKind::Westergaard, ModelKind::Wnl];
+
+    /// The name used in specs, column names and legends.
+    pub fn key(self) -> &'static str {
+        match self {
+            ModelKind::Westergaard => "westergaard",
+            ModelKind::Wnl => "wnl",
+        }
+    }
+}
+
+/// A model name that is neither `westergaard` nor `wnl`.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown model `{0}`; allowed: westergaard, wnl")]
+pub struct ModelKindParseError(pub String);
+
+impl std::str::FromStr for ModelKind {
+    type Err = ModelKindParseError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        ModelKind::ALL
+            .into_iter()
+            .find(|k| k.key() == s)
+            .ok_or_else(|| ModelKindParseError(s.into()))
     }
 }
 
@@ -44,6 +82,25 @@ impl PressureLaw for ModelLaw {
 }
 
 impl ModelLaw {
+    /// The law `kind` at one (AR, τ_max in MPa); `reading` and `coefficients` serve WNL only.
+    pub fn new(
+        kind: ModelKind,
+        aspect_ratio: f64,
+        tau_max_mpa: f64,
+        reading: Reading,
+        coefficients: CoefficientSet,
+    ) -> Self {
+        match kind {
+            ModelKind::Westergaard => ModelLaw::Westergaard(Westergaard::new(aspect_ratio)),
+            ModelKind::Wnl => ModelLaw::Wnl(Wnl::new(
+                aspect_ratio,
+                tau_max_mpa,
+                reading,
+                coefficients.coefficients(),
+            )),
+        }
+    }
+
     /// True when the law is evaluated outside the domain its coefficients were fitted on.
     /// Westergaard has no fitted part and never extrapolates.
     pub fn is_extrapolated(&self) -> bool {

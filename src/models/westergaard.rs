@@ -1,5 +1,5 @@
 //! Westergaard's solution for a rigid sinusoid on a linear elastic half-plane, frictionless
-//! (Westergaard 1939; REPLICATION.md R4):
+//! (Westergaard 1939; docs/replication.md R4):
 //!
 //! p̄(a) = π E* (Δ/λ) sin²(π a/λ),  full contact at p* = π E* Δ/λ.
 

@@ -1,5 +1,5 @@
 //! The WNL ("Westergaard NonLinear") model: Westergaard's law corrected by two quadratic
-//! polynomials A(AR, τ_max) and B(AR, τ_max) (paper Eq. 4–6, REPLICATION.md R5).
+//! polynomials A(AR, τ_max) and B(AR, τ_max) (paper Eq. 4–6, docs/replication.md R5).
 //!
 //! The paper's Eq. 4 lost its fences and a superscript when it was typeset to text, so its
 //! form is a hypothesis. Three readings are implemented, by name (x = a/λ, p̄_W = Westergaard):
@@ -45,6 +45,20 @@ impl Reading {
     }
 }
 
+impl Reading {
+    /// The factor s(x) that multiplies A under this reading, from Westergaard's `p_w` =
+    /// p̄_W/E* at `x` = a/λ: every reading is p̄/E* = p̄_W/E*·B + s(x)·A (the table in the
+    /// module documentation), the one definition that [`Wnl`] evaluates and the refit
+    /// (`crate::fit`) regresses on.
+    pub fn a_shape(self, x: f64, p_w: f64) -> f64 {
+        match self {
+            Reading::BracketSq => p_w * x * (PI * x).cos().powi(2),
+            Reading::Bracket2x => p_w * x * (2.0 * PI * x).cos(),
+            Reading::Literal => x * (PI * x).cos().powi(2),
+        }
+    }
+}
+
 impl fmt::Display for Reading {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
@@ -75,12 +89,49 @@ pub struct Coefficients {
 }
 
 impl Coefficients {
-    /// The paper's Table 1 (REPLICATION.md R5).
+    /// The paper's Table 1 (docs/replication.md R5).
     pub const PAPER_TABLE1: Coefficients = Coefficients {
         a: [0.24536, -9.96905, 4.80482, -0.305098, -47.5605, -3.56199],
         b: [0.963506, 1.26005, -0.33278, -0.424387, 10.4263, -2.45931],
         domain: FitDomain::PAPER,
     };
+}
+
+/// One of the two correction polynomials of a coefficient set.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Correction {
+    /// A(AR, τ_max), coefficients a₀…a₅.
+    A,
+    /// B(AR, τ_max), coefficients b₀…b₅.
+    B,
+}
+
+impl Correction {
+    pub const BOTH: [Correction; 2] = [Correction::A, Correction::B];
+
+    /// `A` or `B`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Correction::A => "A",
+            Correction::B => "B",
+        }
+    }
+
+    /// The coefficient letter, `a` or `b`.
+    pub fn letter(self) -> &'static str {
+        match self {
+            Correction::A => "a",
+            Correction::B => "b",
+        }
+    }
+
+    /// This polynomial's six coefficients in `c`.
+    pub fn of(self, c: &Coefficients) -> &[f64; 6] {
+        match self {
+            Correction::A => &c.a,
+            Correction::B => &c.b,
+        }
+    }
 }
 
 /// The quadratic form c₀ + c₁ AR + c₂ τ + c₃ AR² + c₄ AR τ + c₅ τ² shared by A and B.
@@ -142,14 +193,7 @@ impl Wnl {
 
 impl PressureLaw for Wnl {
     fn p_over_estar(&self, a_over_lambda: f64) -> f64 {
-        let x = a_over_lambda;
-        let (a, b) = (self.correction_a(), self.correction_b());
-        let p_w = Westergaard::new(self.aspect_ratio).p_over_estar(x);
-        let c = (PI * x).cos();
-        match self.reading {
-            Reading::BracketSq => p_w * (b + x * a * c * c),
-            Reading::Bracket2x => p_w * (b + x * a * (2.0 * PI * x).cos()),
-            Reading::Literal => p_w * b + x * a * c * c,
-        }
+        let p_w = Westergaard::new(self.aspect_ratio).p_over_estar(a_over_lambda);
+        p_w * self.correction_b() + self.reading.a_shape(a_over_lambda, p_w) * self.correction_a()
     }
 }

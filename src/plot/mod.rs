@@ -190,6 +190,27 @@ pub mod palette {
     pub const CYCLE: [RGBColor; 7] = [BLUE, VERMILION, GREEN, ORANGE, SKY, PURPLE, BLACK];
 }
 
+/// Lower and upper plot limits that enclose `values` with a 5% margin (0 kept as a floor
+/// when every value is non-negative).
+pub fn padded_range(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = values
+        .into_iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    if !lo.is_finite() {
+        return (0.0, 1.0);
+    }
+    let span = (hi - lo).max(1e-12 * hi.abs().max(1.0));
+    let lo = if lo >= 0.0 && lo - 0.05 * span < 0.0 {
+        0.0
+    } else {
+        lo - 0.05 * span
+    };
+    (lo, hi + 0.05 * span)
+}
+
 /// Renders `figure` to SVG text.
 pub fn render_svg(figure: &Figure) -> Result<String, PlotError> {
     ensure_font();

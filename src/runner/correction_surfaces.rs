@@ -1,18 +1,65 @@
 //! Paper Fig. 2: the correction surfaces A(AR, τ_max) and B(AR, τ_max), as families of lines
 //! a reader can read values off, with the finite-element aspect ratios emphasised.
 
-use crate::coefficient_sets;
-use crate::models::wnl::quadratic_surface;
-use crate::plot::{palette, Figure, LegendPosition, Panel, Series};
-use crate::spec::CorrectionSurfacesScene;
+use super::scenes::{Scene, SceneContext, SceneResult};
+use crate::models::wnl::{quadratic_surface, Correction};
+use crate::models::CoefficientSet;
+use crate::plot::{padded_range, palette, Figure, LegendPosition, Panel, Series};
+use crate::spec::{Bounded, Grid, NonNegative, Positive, SpecError, Validator};
 use crate::table::Table;
 use anyhow::Result;
+use serde::Deserialize;
 
-pub(super) fn run(
-    title: &str,
-    s: &CorrectionSurfacesScene,
-) -> Result<(Vec<Table>, Figure, Vec<String>)> {
-    let c = coefficient_sets::by_name(&s.coefficients).expect("validated when the spec is parsed");
+/// Paper Fig. 2: A and B over an (AR, τ_max) grid.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CorrectionSurfacesScene {
+    /// Coefficient set, by name (default `paper-table1`).
+    #[serde(default)]
+    pub coefficients: CoefficientSet,
+    /// AR grid of the tabulated surfaces (dimensionless Δ/λ).
+    pub aspect_ratio: Grid,
+    /// τ_max grid of the tabulated surfaces, MPa.
+    pub tau_max_mpa: Grid,
+    /// Aspect ratios drawn as lines against τ_max.
+    pub line_aspect_ratios: Vec<Bounded<Positive>>,
+    /// τ_max values (MPa) drawn as lines against AR.
+    pub line_tau_max_mpa: Vec<Bounded<NonNegative>>,
+    /// Aspect ratios of the finite-element sweep, emphasised in the figure.
+    pub marked_aspect_ratios: Vec<Bounded<Positive>>,
+}
+
+impl Scene for CorrectionSurfacesScene {
+    fn run(&self, ctx: &SceneContext) -> Result<SceneResult> {
+        run(ctx.title, self)
+    }
+
+    fn validate(&self, v: &Validator) -> Result<(), SpecError> {
+        v.grid(
+            "correction_surfaces.aspect_ratio",
+            &self.aspect_ratio,
+            (0.0, f64::INFINITY),
+            false,
+        )?;
+        v.grid(
+            "correction_surfaces.tau_max_mpa",
+            &self.tau_max_mpa,
+            (0.0, f64::INFINITY),
+            true,
+        )?;
+        v.non_empty(
+            "correction_surfaces.line_aspect_ratios",
+            self.line_aspect_ratios.len(),
+        )?;
+        v.non_empty(
+            "correction_surfaces.line_tau_max_mpa",
+            self.line_tau_max_mpa.len(),
+        )
+    }
+}
+
+fn run(title: &str, s: &CorrectionSurfacesScene) -> Result<SceneResult> {
+    let c = s.coefficients.coefficients();
     let ars = s.aspect_ratio.values();
     let taus = s.tau_max_mpa.values();
 
@@ -34,8 +81,8 @@ pub(super) fn run(
             table.push(vec![
                 ar.into(),
                 tau.into(),
-                quadratic_surface(&c.a, ar, tau).into(),
-                quadratic_surface(&c.b, ar, tau).into(),
+                quadratic_surface(Correction::A.of(&c), ar, tau).into(),
+                quadratic_surface(Correction::B.of(&c), ar, tau).into(),
                 extrapolated.into(),
             ]);
         }
@@ -48,7 +95,8 @@ pub(super) fn run(
             .any(|m| (m - ar).abs() <= 1e-12 * m.abs().max(1.0))
     };
     let mut panels = vec![];
-    for (name, coeffs) in [("A", &c.a), ("B", &c.b)] {
+    for correction in Correction::BOTH {
+        let (name, coeffs) = (correction.name(), correction.of(&c));
         // Against τ_max, one line per aspect ratio; the FE ones solid and thick.
         let mut vs_tau = vec![];
         for (k, ar) in s.line_aspect_ratios.iter().map(|v| v.get()).enumerate() {
@@ -88,8 +136,8 @@ pub(super) fn run(
                 .flat_map(|s| s.points.iter().map(|p| p.1))
                 .collect::<Vec<_>>()
         };
-        let y_tau = super::padded_range(all(&vs_tau));
-        let y_ar = super::padded_range(all(&vs_ar));
+        let y_tau = padded_range(all(&vs_tau));
+        let y_ar = padded_range(all(&vs_ar));
         for (i, &m) in marked.iter().enumerate() {
             let label = (i == 0).then(|| "FE aspect ratios".to_string());
             vs_ar.push(Series::dashed(
@@ -145,5 +193,9 @@ pub(super) fn run(
         footer,
         font_px: 18,
     };
-    Ok((vec![table], figure, notes))
+    Ok(SceneResult {
+        tables: vec![table],
+        figure,
+        notes,
+    })
 }

@@ -2,25 +2,54 @@
 //! pressure along the contact face: the picture that shows what the solver does at large
 //! aspect ratio (material sliding along the indenter, the valley closing).
 
-use super::fe_cases::FeCase;
+use super::fe_cases::{FeCase, FePhysics};
+use super::scenes::{Scene, SceneContext, SceneResult};
 use super::RunOptions;
 use crate::fe;
 use crate::plot::{palette, Figure, LegendPosition, Panel, Series};
-use crate::spec::DeformedMeshScene;
+use crate::spec::{Bounded, FeSection, Positive, SpecError, Validator};
 use crate::table::Table;
 use anyhow::{anyhow, Result};
+use serde::Deserialize;
 
-pub(super) fn run(
-    title: &str,
-    s: &DeformedMeshScene,
-    opts: &RunOptions,
-) -> Result<(Vec<Table>, Figure, Vec<String>)> {
+/// The deformed finite-element mesh and its contact pressure at the end of loading.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DeformedMeshScene {
+    /// Aspect ratio Δ/λ.
+    pub aspect_ratio: Bounded<Positive>,
+    /// The FE model; `tau_max_mpa` must hold exactly one value.
+    pub fe: FeSection,
+}
+
+impl Scene for DeformedMeshScene {
+    fn run(&self, ctx: &SceneContext) -> Result<SceneResult> {
+        run(ctx.title, self, ctx.opts)
+    }
+
+    fn validate(&self, v: &Validator) -> Result<(), SpecError> {
+        v.fe_section("deformed_mesh.fe", &self.fe, None)?;
+        if self.fe.tau_max_mpa.len() != 1 {
+            return Err(v.invalid(
+                "deformed_mesh.fe.tau_max_mpa",
+                None,
+                format!("{} values", self.fe.tau_max_mpa.len()),
+                "exactly one value".into(),
+            ));
+        }
+        Ok(())
+    }
+}
+
+fn run(title: &str, s: &DeformedMeshScene, opts: &RunOptions) -> Result<SceneResult> {
     let ar = s.aspect_ratio.get();
     let tau = s.fe.tau_max_mpa[0].get();
-    let mut case = FeCase::from_section(&s.fe, ar, tau);
-    if let Some(mesh) = opts.fe_mesh_override {
-        case.options.mesh = mesh;
-    }
+    let case = FeCase::new(
+        &FePhysics::from(&s.fe),
+        ar,
+        tau,
+        s.fe.options(opts.fe_mesh_override),
+    );
     let curve = fe::solve_curve(&case.problem, &case.options, &mut |_| {})
         .map_err(|f| anyhow!("the FE solve for the deformed mesh stopped: {}", f.error))?;
     let last = *curve
@@ -145,5 +174,9 @@ pub(super) fn run(
         footer,
         font_px: 18,
     };
-    Ok((vec![table], figure, vec![]))
+    Ok(SceneResult {
+        tables: vec![table],
+        figure,
+        notes: vec![],
+    })
 }

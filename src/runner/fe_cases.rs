@@ -2,8 +2,8 @@
 
 use super::sweep::{self, Cacheable, SweepCase};
 use super::RunOptions;
-use crate::fe::{self, CurvePoint, Kinematics, LayerProblem, SolveOptions};
-use crate::spec::{FeSection, KinematicsName};
+use crate::fe::{self, CurvePoint, Kinematics, LayerProblem, MeshLevel, SolveOptions};
+use crate::spec::FeSection;
 use anyhow::Result;
 
 /// The FE cases of a section: one per (τ_max, AR), τ_max outer, at the run's mesh override
@@ -12,11 +12,12 @@ pub fn section_cases(fe: &FeSection, aspect_ratios: &[f64], opts: &RunOptions) -
     let mut cases = vec![];
     for tau in fe.tau_max_mpa.iter().map(|t| t.get()) {
         for &ar in aspect_ratios {
-            let mut case = FeCase::from_section(fe, ar, tau);
-            if let Some(mesh) = opts.fe_mesh_override {
-                case.options.mesh = mesh;
-            }
-            cases.push(case);
+            cases.push(FeCase::new(
+                &FePhysics::from(fe),
+                ar,
+                tau,
+                fe.options(opts.fe_mesh_override),
+            ));
         }
     }
     cases
@@ -45,6 +46,47 @@ pub fn compute_share(cases: &[FeCase], opts: &RunOptions) -> Result<(usize, usiz
 /// Fingerprint of the solver's source (build.rs): a changed solver never reads old results.
 pub const FE_SOURCE_SHA256: &str = env!("WAVY_FE_SOURCE_SHA256");
 
+/// The physical parameters of an FE curve other than its aspect ratio and shear strength:
+/// what a spec's FE section and `wavy solve`'s flags both state (docs/replication.md R7).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FePhysics {
+    /// Plane-strain modulus E*, MPa: turns τ_max in MPa into the solver's τ_max/E*.
+    pub estar_mpa: f64,
+    /// Layer thickness over wavelength h/λ.
+    pub thickness_over_lambda: f64,
+    /// Bulk over shear modulus κ/G.
+    pub kappa_over_g: f64,
+    /// Friction coefficient μ.
+    pub friction_coefficient: f64,
+    /// Elastic slip at the friction threshold over the mean face element length.
+    pub elastic_slip_over_element: f64,
+    pub kinematics: Kinematics,
+}
+
+impl From<&FeSection> for FePhysics {
+    fn from(fe: &FeSection) -> Self {
+        FePhysics {
+            estar_mpa: fe.estar_mpa.get(),
+            thickness_over_lambda: fe.thickness_over_lambda.get(),
+            kappa_over_g: fe.kappa_over_g.get(),
+            friction_coefficient: fe.friction_coefficient.get(),
+            elastic_slip_over_element: fe.elastic_slip_over_element.get(),
+            kinematics: fe.kinematics,
+        }
+    }
+}
+
+impl FeSection {
+    /// The solver options of this section, at `mesh_override` when a run sets one.
+    pub fn options(&self, mesh_override: Option<MeshLevel>) -> SolveOptions {
+        SolveOptions {
+            until_a_over_lambda: self.until_a_over_lambda.get(),
+            mesh: mesh_override.unwrap_or(self.mesh),
+            ..SolveOptions::default()
+        }
+    }
+}
+
 /// One FE curve: the physical problem, the numerical options, and the modulus that turns
 /// τ_max in MPa into τ_max/E*.
 #[derive(Debug, Clone)]
@@ -57,33 +99,31 @@ pub struct FeCase {
 }
 
 impl FeCase {
-    /// The case of one panel of a `[fe_vs_model.fe]` section.
-    pub fn from_section(fe: &FeSection, aspect_ratio: f64, tau_max_mpa: f64) -> Self {
+    /// The case at aspect ratio Δ/λ and shear strength τ_max (MPa): the one place where a
+    /// layer problem is built from physical parameters.
+    pub fn new(
+        physics: &FePhysics,
+        aspect_ratio: f64,
+        tau_max_mpa: f64,
+        options: SolveOptions,
+    ) -> Self {
         let problem = LayerProblem {
             aspect_ratio,
-            thickness_over_lambda: fe.thickness_over_lambda.get(),
-            kappa_over_g: fe.kappa_over_g.get(),
-            kinematics: match fe.kinematics {
-                KinematicsName::Finite => Kinematics::Finite,
-                KinematicsName::Linear => Kinematics::Linear,
-            },
+            thickness_over_lambda: physics.thickness_over_lambda,
+            kappa_over_g: physics.kappa_over_g,
+            kinematics: physics.kinematics,
             interface: fe::Interface::coulomb_orowan(
-                fe.friction_coefficient.get(),
-                tau_max_mpa / fe.estar_mpa.get(),
-                fe.elastic_slip_over_element.get(),
+                physics.friction_coefficient,
+                tau_max_mpa / physics.estar_mpa,
+                physics.elastic_slip_over_element,
             ),
-        };
-        let options = SolveOptions {
-            until_a_over_lambda: fe.until_a_over_lambda.get(),
-            mesh: fe.mesh.0,
-            ..SolveOptions::default()
         };
         FeCase {
             problem,
             options,
-            estar_mpa: fe.estar_mpa.get(),
+            estar_mpa: physics.estar_mpa,
             tau_max_mpa,
-            friction_coefficient: fe.friction_coefficient.get(),
+            friction_coefficient: physics.friction_coefficient,
         }
     }
 
@@ -149,10 +189,10 @@ impl Cacheable for FeOutcome {
                 .as_str(),
         );
         s.push('\n');
-        s.push_str(crate::cli::SOLVE_HEADER);
+        s.push_str(CurvePoint::CSV_HEADER);
         s.push('\n');
         for p in &self.points {
-            s.push_str(&crate::cli::solve_row(p));
+            s.push_str(&p.csv_row());
             s.push('\n');
         }
         s
@@ -165,25 +205,12 @@ impl Cacheable for FeOutcome {
             "ok" => None,
             f => Some(f.strip_prefix("failed: ")?.to_string()),
         };
-        if lines.next()? != crate::cli::SOLVE_HEADER {
+        if lines.next()? != CurvePoint::CSV_HEADER {
             return None;
         }
         let points = lines
-            .map(|l| {
-                let f: Vec<&str> = l.split(',').collect();
-                if f.len() != 6 {
-                    return None;
-                }
-                Some(CurvePoint {
-                    a_over_lambda: f[0].parse().ok()?,
-                    p_over_estar: f[1].parse().ok()?,
-                    p_over_estar_reaction: f[2].parse().ok()?,
-                    slab_displacement_over_lambda: f[3].parse().ok()?,
-                    newton_iterations: f[4].parse().ok()?,
-                    active_nodes: f[5].parse().ok()?,
-                })
-            })
-            .collect::<Option<Vec<_>>>()?;
+            .map(|l| l.parse().ok())
+            .collect::<Option<Vec<CurvePoint>>>()?;
         Some(FeOutcome { points, failure })
     }
 }

@@ -2,22 +2,61 @@
 //! points with the mean squared error of each model against them where the spec asks for FE.
 
 use super::fe_cases::{self, FeCase, FeOutcome};
-use super::{model_key, model_laws, padded_range, RunOptions};
-use crate::models::{ModelLaw, PressureLaw};
-use crate::plot::{palette, Figure, LegendPosition, Panel, Series};
-use crate::spec::{FeVsModelScene, ModelName};
+use super::scenes::{Scene, SceneContext, SceneResult};
+use super::{model_laws, RunOptions};
+use crate::models::{ModelKind, ModelLaw, PressureLaw};
+use crate::plot::{padded_range, palette, Figure, LegendPosition, Panel, Series};
+use crate::spec::{
+    Bounded, FeSection, Grid, ModelSelection, NonNegative, Positive, SpecError, Validator,
+    A_OVER_LAMBDA_ALLOWED,
+};
 use crate::table::{Cell, Table};
 use anyhow::Result;
+use serde::Deserialize;
 
-/// The FE cases of a scene, in (τ_max, AR) order.
-fn fe_cases(s: &FeVsModelScene, opts: &RunOptions) -> Vec<FeCase> {
-    let Some(fe) = &s.fe else { return vec![] };
-    let ars: Vec<f64> = s.aspect_ratios.iter().map(|a| a.get()).collect();
-    fe_cases::section_cases(fe, &ars, opts)
+/// Paper Fig. 3: one panel per (AR, τ_max), p̄/E* against a/λ.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FeVsModelScene {
+    /// Panel rows' aspect ratios Δ/λ.
+    pub aspect_ratios: Vec<Bounded<Positive>>,
+    /// Panel columns' interfacial shear strengths, MPa.
+    pub tau_max_mpa: Vec<Bounded<NonNegative>>,
+    /// Where the model lines are sampled, a/λ.
+    pub a_over_lambda: Grid,
+    pub models: ModelSelection,
+    /// Finite-element curves; absent: model lines only.
+    pub fe: Option<FeSection>,
 }
 
-pub(super) fn compute_share(s: &FeVsModelScene, opts: &RunOptions) -> Result<(usize, usize)> {
-    fe_cases::compute_share(&fe_cases(s, opts), opts)
+impl Scene for FeVsModelScene {
+    /// One case per (τ_max, AR) of the FE section, τ_max outer.
+    fn fe_cases(&self, opts: &RunOptions) -> Vec<FeCase> {
+        let Some(fe) = &self.fe else { return vec![] };
+        let ars: Vec<f64> = self.aspect_ratios.iter().map(|a| a.get()).collect();
+        fe_cases::section_cases(fe, &ars, opts)
+    }
+
+    fn run(&self, ctx: &SceneContext) -> Result<SceneResult> {
+        run(ctx.title, self, ctx.opts)
+    }
+
+    fn validate(&self, v: &Validator) -> Result<(), SpecError> {
+        v.non_empty("fe_vs_model.aspect_ratios", self.aspect_ratios.len())?;
+        v.non_empty("fe_vs_model.tau_max_mpa", self.tau_max_mpa.len())?;
+        v.grid(
+            "fe_vs_model.a_over_lambda",
+            &self.a_over_lambda,
+            A_OVER_LAMBDA_ALLOWED,
+            true,
+        )?;
+        v.models("fe_vs_model.models", &self.models)?;
+        if let Some(fe) = &self.fe {
+            let panels: Vec<f64> = self.tau_max_mpa.iter().map(|t| t.get()).collect();
+            v.fe_section("fe_vs_model.fe", fe, Some(&panels))?;
+        }
+        Ok(())
+    }
 }
 
 /// Mean squared error and largest absolute deviation of `law` against FE points, in p̄/E*.
@@ -30,16 +69,12 @@ fn errors(law: &ModelLaw, fe: &FeOutcome) -> (f64, f64) {
     (sum / n, max)
 }
 
-pub(super) fn run(
-    title: &str,
-    s: &FeVsModelScene,
-    opts: &RunOptions,
-) -> Result<(Vec<Table>, Figure, Vec<String>)> {
+fn run(title: &str, s: &FeVsModelScene, opts: &RunOptions) -> Result<SceneResult> {
     let xs = s.a_over_lambda.values();
     let ars: Vec<f64> = s.aspect_ratios.iter().map(|v| v.get()).collect();
     let taus: Vec<f64> = s.tau_max_mpa.iter().map(|v| v.get()).collect();
 
-    let cases = fe_cases(s, opts);
+    let cases = s.fe_cases(opts);
     let outcomes = fe_cases::solve_all(&cases, opts)?;
     let fe_at = |ar: f64, tau: f64| -> Option<&FeOutcome> {
         cases
@@ -54,7 +89,7 @@ pub(super) fn run(
         .models
         .draw
         .iter()
-        .map(|&m| format!("p_over_estar_{}", model_key(m)))
+        .map(|&m| format!("p_over_estar_{}", m.key()))
         .collect();
     header.extend(columns.iter().map(String::as_str));
     // the WNL line with the comparison coefficient set, e.g. `wnl_ours_bracket_sq`
@@ -62,7 +97,7 @@ pub(super) fn run(
         .models
         .compare_coefficients
         .as_ref()
-        .map(|c| format!("wnl_{}", c.replace('-', "_")));
+        .map(|c| format!("wnl_{}", c.name().replace('-', "_")));
     let compare_column = compare_key.as_ref().map(|k| format!("p_over_estar_{k}"));
     if let Some(c) = &compare_column {
         header.push(c);
@@ -85,8 +120,8 @@ pub(super) fn run(
         "fe_points".into(),
     ];
     for &m in &s.models.draw {
-        mse_header.push(format!("mse_{}", model_key(m)));
-        mse_header.push(format!("max_abs_dev_{}", model_key(m)));
+        mse_header.push(format!("mse_{}", m.key()));
+        mse_header.push(format!("max_abs_dev_{}", m.key()));
     }
     if let Some(key) = &compare_key {
         mse_header.push(format!("mse_{key}"));
@@ -105,11 +140,10 @@ pub(super) fn run(
     for &tau in &taus {
         for &ar in &ars {
             let laws = model_laws(&s.models, ar, tau);
-            let compare = s.models.compare_coefficients.as_ref().map(|name| {
-                let c = crate::coefficient_sets::by_name(name)
-                    .expect("coefficient set names are validated when the spec is parsed");
-                ModelLaw::Wnl(crate::models::Wnl::new(ar, tau, s.models.reading, c))
-            });
+            let compare = s
+                .models
+                .compare_coefficients
+                .map(|c| ModelLaw::new(ModelKind::Wnl, ar, tau, s.models.reading, c));
             let extrapolated = laws.iter().any(|(_, l)| l.is_extrapolated());
             if extrapolated {
                 extrapolated_panels.push(format!("AR = {ar}, τ_max = {tau} MPa"));
@@ -153,7 +187,7 @@ pub(super) fn run(
                     let (m, d) = errors(law, fe);
                     row.push(m.into());
                     row.push(d.into());
-                    if *name == ModelName::Wnl {
+                    if *name == ModelKind::Wnl {
                         panel_notes.push(format!("MSE(WNL) = {}", crate::numfmt::sig_digits(m, 2)));
                     }
                 }
@@ -163,7 +197,7 @@ pub(super) fn run(
                     row.push(d.into());
                     panel_notes.push(format!(
                         "MSE(WNL, {}) = {}",
-                        s.models.compare_coefficients.as_deref().unwrap_or_default(),
+                        s.models.compare_coefficients.map_or("", |c| c.name()),
                         crate::numfmt::sig_digits(m, 2)
                     ));
                 }
@@ -184,8 +218,8 @@ pub(super) fn run(
             series.extend(laws.iter().map(|(name, law)| {
                 let pts = xs.iter().map(|&x| (x, law.p_over_estar(x))).collect();
                 let (label, color) = match name {
-                    ModelName::Westergaard => ("Westergaard".to_string(), palette::BLACK),
-                    ModelName::Wnl => (
+                    ModelKind::Westergaard => ("Westergaard".to_string(), palette::BLACK),
+                    ModelKind::Wnl => (
                         format!("WNL ({}, {})", s.models.reading, s.models.coefficients),
                         palette::VERMILION,
                     ),
@@ -255,5 +289,9 @@ pub(super) fn run(
         tables.push(fe_points);
         tables.push(mse);
     }
-    Ok((tables, figure, notes))
+    Ok(SceneResult {
+        tables,
+        figure,
+        notes,
+    })
 }

@@ -1,4 +1,4 @@
-//! Paper Fig. 5 (R8): total contact area of a fingertip against normal load, ridges as a
+//! Paper Fig. 5 (docs/replication.md R8): total contact area of a fingertip against normal load, ridges as a
 //! sinusoid of wavelength λ and amplitude Δ.
 //!
 //! The nominal contact is a disc of area A_exp, radius R = √(A_exp/π); N = 2R/λ ridges cross
@@ -7,14 +7,80 @@
 //! model's full-contact pressure every ridge is in full contact, a = λ/2: the scene records
 //! that state as `full`, it does not clamp the inverse.
 
-use super::{measured, model_key, model_laws, padded_range};
-use crate::models::{a_over_lambda_at, InverseError, PressureLaw};
-use crate::plot::{palette, Figure, LegendPosition, Panel, Series};
-use crate::spec::{FingertipAreaScene, ModelName};
+use super::scenes::{Scene, SceneContext, SceneResult};
+use super::{measured, model_laws};
+use crate::models::{a_over_lambda_at, InverseError, ModelKind, PressureLaw};
+use crate::plot::{padded_range, palette, Figure, LegendPosition, Panel, Series};
+use crate::spec::{
+    Bounded, Grid, Location, ModelSelection, NonNegative, Positive, SpecError, Validator,
+};
 use crate::table::{Cell, Table};
 use anyhow::Result;
+use serde::Deserialize;
 use std::f64::consts::PI;
 use std::path::Path;
+
+/// Paper Fig. 5 (R8): fingerprint ridges as a sinusoid, total contact area against load.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FingertipAreaScene {
+    /// Ridge wavelength λ, mm.
+    pub wavelength_mm: Bounded<Positive>,
+    /// Ridge amplitude Δ, mm.
+    pub amplitude_mm: Bounded<Positive>,
+    /// Nominal (apparent) circular contact area A_exp, mm²; R = √(A_exp/π).
+    pub nominal_area_mm2: Bounded<Positive>,
+    /// Plane-strain modulus of the central line, MPa.
+    pub estar_mpa: Bounded<Positive>,
+    /// Plane-strain modulus range [low, high] drawn as a band, MPa.
+    pub estar_band_mpa: [Bounded<Positive>; 2],
+    /// Interfacial shear strength τ_max, MPa.
+    pub tau_max_mpa: Bounded<NonNegative>,
+    /// Normal load grid, N.
+    pub load_n: Grid,
+    pub models: ModelSelection,
+    /// Measured points, relative to the spec's folder (schema: `experiments/data/README.md`).
+    /// A missing file is reported in the figure and the run's output, never replaced.
+    pub measured_data: Option<String>,
+}
+
+impl Scene for FingertipAreaScene {
+    fn run(&self, ctx: &SceneContext) -> Result<SceneResult> {
+        run(ctx.title, self, ctx.spec_dir)
+    }
+
+    fn validate(&self, v: &Validator) -> Result<(), SpecError> {
+        v.grid(
+            "fingertip_area.load_n",
+            &self.load_n,
+            (0.0, f64::INFINITY),
+            true,
+        )?;
+        v.models("fingertip_area.models", &self.models)?;
+        let [lo, hi] = self.estar_band_mpa.map(Bounded::get);
+        let e = self.estar_mpa.get();
+        if !(lo < e && e < hi) {
+            return Err(SpecError::Invalid {
+                origin: v.origin.into(),
+                field: "fingertip_area.estar_band_mpa".into(),
+                location: Location(None),
+                value: format!("[{lo}, {hi}]"),
+                allowed: format!("[low, high] with low < estar_mpa = {e} < high"),
+            });
+        }
+        let ar = self.amplitude_mm.get() / self.wavelength_mm.get();
+        if ar >= 0.5 {
+            return Err(SpecError::Invalid {
+                origin: v.origin.into(),
+                field: "fingertip_area.amplitude_mm".into(),
+                location: Location(None),
+                value: self.amplitude_mm.get().to_string(),
+                allowed: format!("< wavelength_mm / 2 = {}", self.wavelength_mm.get() / 2.0),
+            });
+        }
+        Ok(())
+    }
+}
 
 /// Outcome of one load on one model.
 enum Area {
@@ -23,11 +89,7 @@ enum Area {
     Undefined(InverseError),
 }
 
-pub(super) fn run(
-    title: &str,
-    s: &FingertipAreaScene,
-    spec_dir: &Path,
-) -> Result<(Vec<Table>, Figure, Vec<String>)> {
+fn run(title: &str, s: &FingertipAreaScene, spec_dir: &Path) -> Result<SceneResult> {
     let lambda_mm = s.wavelength_mm.get();
     let ar = s.amplitude_mm.get() / lambda_mm;
     let radius_mm = (s.nominal_area_mm2.get() / PI).sqrt();
@@ -71,8 +133,8 @@ pub(super) fn run(
     let mut notes = vec![];
     for (name, law) in &laws {
         let (label, color) = match name {
-            ModelName::Westergaard => ("Westergaard".to_string(), palette::BLACK),
-            ModelName::Wnl => (format!("WNL ({})", s.models.reading), palette::VERMILION),
+            ModelKind::Westergaard => ("Westergaard".to_string(), palette::BLACK),
+            ModelKind::Wnl => (format!("WNL ({})", s.models.reading), palette::VERMILION),
         };
         let extrapolated = law.is_extrapolated();
         let mut curves = vec![];
@@ -106,7 +168,7 @@ pub(super) fn run(
                     }
                 };
                 table.push(vec![
-                    model_key(*name).into(),
+                    name.key().into(),
                     estar.into(),
                     f.into(),
                     p.into(),
@@ -123,13 +185,13 @@ pub(super) fn run(
         // WNL's range is shaded; Westergaard's is drawn as two dashed edges so both stay visible.
         let range_label = Some(format!("{label}, E* ∈ [{e_lo}, {e_hi}] MPa"));
         match name {
-            ModelName::Wnl => series.push(Series::band(
+            ModelKind::Wnl => series.push(Series::band(
                 range_label,
                 color,
                 curves[2].clone(),
                 curves[0].clone(),
             )),
-            ModelName::Westergaard => {
+            ModelKind::Westergaard => {
                 series.push(Series::dashed(range_label, color, 1, curves[0].clone()));
                 series.push(Series::dashed(None, color, 1, curves[2].clone()));
             }
@@ -232,5 +294,9 @@ pub(super) fn run(
         footer,
         font_px: 18,
     };
-    Ok((vec![table], figure, notes))
+    Ok(SceneResult {
+        tables: vec![table],
+        figure,
+        notes,
+    })
 }

@@ -4,19 +4,21 @@
 //! temporary file in the target folder and renamed into place, so that a failed or
 //! interrupted run never leaves a partial CSV or SVG behind.
 
-mod correction_surfaces;
-mod deformed_mesh;
+pub mod correction_surfaces;
+pub mod deformed_mesh;
 pub mod fe_cases;
-mod fe_vs_model;
-mod fingertip_area;
+pub mod fe_vs_model;
+pub mod fingertip_area;
 pub mod measured;
+pub mod scenes;
 pub mod sweep;
-mod table1_refit;
+pub mod table1_refit;
 
-use crate::coefficient_sets;
-use crate::models::{ModelLaw, Westergaard, Wnl};
-use crate::spec::{ModelName, ModelSelection, Scene, Spec};
-use crate::table::{Comparison, Table};
+pub use scenes::{Scene, SceneContext, SceneResult, Spec};
+
+use crate::models::{ModelKind, ModelLaw};
+use crate::spec::ModelSelection;
+use crate::table::{CompareError, Comparison, Table};
 use anyhow::{Context, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -52,15 +54,11 @@ pub fn run_spec_file(path: &Path, opts: &RunOptions) -> Result<SceneOutput> {
     )
 }
 
-/// With a shard in `opts`: computes this shard's share of the spec's expensive cases into the
-/// cache and writes no figure. Returns (cases computed, cases already cached).
+/// With a shard in `opts`: computes this shard's share of the spec's finite-element cases
+/// into the cache and writes no figure. Returns (cases computed, cases already cached).
 pub fn compute_share(path: &Path, opts: &RunOptions) -> Result<(usize, usize)> {
     let spec = load_spec(path)?;
-    match spec.scene() {
-        Scene::FeVsModel(s) => fe_vs_model::compute_share(s, opts),
-        Scene::Table1Refit(s) => table1_refit::compute_share(s, opts),
-        _ => Ok((0, 0)),
-    }
+    fe_cases::compute_share(&spec.scene().fe_cases(opts), opts)
 }
 
 /// Reads and parses the spec at `path`.
@@ -92,13 +90,15 @@ pub fn run_spec(
     spec_dir: &Path,
     opts: &RunOptions,
 ) -> Result<SceneOutput> {
-    let (tables, figure, notes) = match spec.scene() {
-        Scene::CorrectionSurfaces(s) => correction_surfaces::run(&spec.title, s)?,
-        Scene::FeVsModel(s) => fe_vs_model::run(&spec.title, s, opts)?,
-        Scene::DeformedMesh(s) => deformed_mesh::run(&spec.title, s, opts)?,
-        Scene::FingertipArea(s) => fingertip_area::run(&spec.title, s, spec_dir)?,
-        Scene::Table1Refit(s) => table1_refit::run(&spec.title, s, opts)?,
-    };
+    let SceneResult {
+        tables,
+        figure,
+        notes,
+    } = spec.scene().run(&SceneContext {
+        title: &spec.title,
+        spec_dir,
+        opts,
+    })?;
     let svg = crate::plot::render_svg(&figure)?;
     Ok(SceneOutput {
         stem: stem.into(),
@@ -149,11 +149,24 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     Ok(())
 }
 
+/// Why a table could not be compared with its golden file.
+#[derive(Debug, thiserror::Error)]
+pub enum CheckError {
+    #[error("cannot read {}: {message}", golden.display())]
+    Unreadable { golden: PathBuf, message: String },
+    #[error("{}: {error}", golden.display())]
+    Mismatch {
+        golden: PathBuf,
+        #[source]
+        error: CompareError,
+    },
+}
+
 /// A scene's tables compared with their golden files in `expected_dir`.
 #[derive(Debug)]
 pub struct CheckReport {
     pub stem: String,
-    pub tables: Vec<(String, Result<Comparison, String>)>,
+    pub tables: Vec<(String, Result<Comparison, CheckError>)>,
 }
 
 impl CheckReport {
@@ -182,10 +195,16 @@ pub fn check_spec_file(path: &Path, expected_dir: &Path, opts: &RunOptions) -> R
             let file = t.file_name(&out.stem);
             let golden = expected_dir.join(&file);
             let result = std::fs::read_to_string(&golden)
-                .map_err(|e| format!("cannot read {}: {e}", golden.display()))
+                .map_err(|e| CheckError::Unreadable {
+                    golden: golden.clone(),
+                    message: e.to_string(),
+                })
                 .and_then(|text| {
                     t.compare(&text, rel, abs)
-                        .map_err(|e| format!("{}: {e}", golden.display()))
+                        .map_err(|error| CheckError::Mismatch {
+                            golden: golden.clone(),
+                            error,
+                        })
                 });
             (file, result)
         })
@@ -201,51 +220,18 @@ pub(crate) fn model_laws(
     sel: &ModelSelection,
     aspect_ratio: f64,
     tau_max_mpa: f64,
-) -> Vec<(ModelName, ModelLaw)> {
-    let coefficients = coefficient_sets::by_name(&sel.coefficients)
-        .expect("coefficient set names are validated when the spec is parsed");
+) -> Vec<(ModelKind, ModelLaw)> {
     sel.draw
         .iter()
-        .map(|&name| {
-            let law = match name {
-                ModelName::Westergaard => ModelLaw::Westergaard(Westergaard::new(aspect_ratio)),
-                ModelName::Wnl => ModelLaw::Wnl(Wnl::new(
-                    aspect_ratio,
-                    tau_max_mpa,
-                    sel.reading,
-                    coefficients,
-                )),
-            };
-            (name, law)
+        .map(|&kind| {
+            let law = ModelLaw::new(
+                kind,
+                aspect_ratio,
+                tau_max_mpa,
+                sel.reading,
+                sel.coefficients,
+            );
+            (kind, law)
         })
         .collect()
-}
-
-/// A model's column/legend name.
-pub(crate) fn model_key(name: ModelName) -> &'static str {
-    match name {
-        ModelName::Westergaard => "westergaard",
-        ModelName::Wnl => "wnl",
-    }
-}
-
-/// Lower and upper plot limits that enclose `values` with a 5% margin (0 kept as a floor
-/// when every value is non-negative).
-pub(crate) fn padded_range(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = values
-        .into_iter()
-        .filter(|v| v.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-            (lo.min(v), hi.max(v))
-        });
-    if !lo.is_finite() {
-        return (0.0, 1.0);
-    }
-    let span = (hi - lo).max(1e-12 * hi.abs().max(1.0));
-    let lo = if lo >= 0.0 && lo - 0.05 * span < 0.0 {
-        0.0
-    } else {
-        lo - 0.05 * span
-    };
-    (lo, hi + 0.05 * span)
 }

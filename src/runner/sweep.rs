@@ -60,6 +60,9 @@ impl FromStr for Shard {
     }
 }
 
+/// The cache folder when none is named (`--cache`).
+pub const DEFAULT_CACHE_DIR: &str = ".wavy-cache";
+
 /// How to run a sweep.
 #[derive(Debug, Clone)]
 pub struct SweepOptions {
@@ -75,7 +78,7 @@ impl Default for SweepOptions {
         Self {
             jobs: rayon::current_num_threads(),
             shard: None,
-            cache_dir: PathBuf::from(".wavy-cache"),
+            cache_dir: PathBuf::from(DEFAULT_CACHE_DIR),
         }
     }
 }

@@ -3,22 +3,61 @@
 //! same curves.
 
 use super::fe_cases::{self, FeCase};
-use super::{padded_range, RunOptions};
+use super::scenes::{Scene, SceneContext, SceneResult};
+use super::RunOptions;
 use crate::fit::{self, CurveSample, Refit};
-use crate::models::wnl::quadratic_surface;
+use crate::models::wnl::{quadratic_surface, Correction};
 use crate::models::{Coefficients, FitDomain, Reading};
-use crate::plot::{palette, Figure, LegendPosition, Panel, Series};
-use crate::spec::Table1RefitScene;
+use crate::plot::{padded_range, palette, Figure, LegendPosition, Panel, Series};
+use crate::spec::{Bounded, FeSection, Grid, Positive, SpecError, Validator};
 use crate::table::{Cell, Table};
 use anyhow::{Context, Result};
+use serde::Deserialize;
 
-fn cases(s: &Table1RefitScene, opts: &RunOptions) -> Vec<FeCase> {
-    let ars: Vec<f64> = s.aspect_ratios.iter().map(|a| a.get()).collect();
-    fe_cases::section_cases(&s.fe, &ars, opts)
+/// Paper Table 1 re-derived: the twelve WNL coefficients fitted by least squares in p̄/E* to our
+/// FE curves, once per reading of Eq. 4 (R5), beside the paper's.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Table1RefitScene {
+    /// Aspect ratios Δ/λ of the FE curves (at least three: the polynomials are quadratic).
+    pub aspect_ratios: Vec<Bounded<Positive>>,
+    /// τ_max grid (MPa) on which the fitted A and B are drawn against the paper's.
+    pub tau_max_mpa: Grid,
+    /// The FE curves; `fe.tau_max_mpa` (at least three values) are the fitted shear strengths.
+    pub fe: FeSection,
 }
 
-pub(super) fn compute_share(s: &Table1RefitScene, opts: &RunOptions) -> Result<(usize, usize)> {
-    fe_cases::compute_share(&cases(s, opts), opts)
+impl Scene for Table1RefitScene {
+    /// One case per (τ_max, AR) of the FE section, τ_max outer.
+    fn fe_cases(&self, opts: &RunOptions) -> Vec<FeCase> {
+        let ars: Vec<f64> = self.aspect_ratios.iter().map(|a| a.get()).collect();
+        fe_cases::section_cases(&self.fe, &ars, opts)
+    }
+
+    fn run(&self, ctx: &SceneContext) -> Result<SceneResult> {
+        run(ctx.title, self, ctx.opts)
+    }
+
+    fn validate(&self, v: &Validator) -> Result<(), SpecError> {
+        v.at_least(
+            "table1_refit.aspect_ratios",
+            self.aspect_ratios.iter().map(|a| a.get()),
+            3,
+        )?;
+        v.fe_section("table1_refit.fe", &self.fe, None)?;
+        v.at_least(
+            "table1_refit.fe.tau_max_mpa",
+            self.fe.tau_max_mpa.iter().map(|t| t.get()),
+            3,
+        )?;
+        v.grid(
+            "table1_refit.tau_max_mpa",
+            &self.tau_max_mpa,
+            (0.0, f64::INFINITY),
+            true,
+        )?;
+        Ok(())
+    }
 }
 
 /// One fitted reading: our refit and the paper's coefficients scored on the same samples.
@@ -40,12 +79,8 @@ pub fn fit_readings(samples: &[CurveSample], domain: FitDomain) -> Result<Vec<Re
         .collect()
 }
 
-pub(super) fn run(
-    title: &str,
-    s: &Table1RefitScene,
-    opts: &RunOptions,
-) -> Result<(Vec<Table>, Figure, Vec<String>)> {
-    let cases = cases(s, opts);
+fn run(title: &str, s: &Table1RefitScene, opts: &RunOptions) -> Result<SceneResult> {
+    let cases = s.fe_cases(opts);
     let outcomes = fe_cases::solve_all(&cases, opts)?;
     let mut notes = vec![];
     let mut samples = vec![];
@@ -86,10 +121,13 @@ pub(super) fn run(
     );
     let mut coefficients = Table::new("", &header.iter().map(String::as_str).collect::<Vec<_>>());
     let paper = Coefficients::PAPER_TABLE1;
-    for (letter, pick) in [("a", 0usize), ("b", 1)] {
+    for correction in Correction::BOTH {
         for i in 0..6 {
-            let get = |c: &Coefficients| if pick == 0 { c.a[i] } else { c.b[i] };
-            let mut row: Vec<Cell> = vec![format!("{letter}{i}").into(), get(&paper).into()];
+            let get = |c: &Coefficients| correction.of(c)[i];
+            let mut row: Vec<Cell> = vec![
+                format!("{}{i}", correction.letter()).into(),
+                get(&paper).into(),
+            ];
             row.extend(fits.iter().map(|f| Cell::Num(get(&f.refit.coefficients))));
             coefficients.push(row);
         }
@@ -120,7 +158,7 @@ pub(super) fn run(
         .iter()
         .min_by(|x, y| x.refit.mse.total_cmp(&y.refit.mse))
         .expect("three readings");
-    notes.push(format!(
+    let best_reading = format!(
         "best reading of Eq. 4 on our FE curves: {} (MSE {}; {})",
         best.refit.reading,
         crate::numfmt::sig_digits(best.refit.mse, 3),
@@ -133,19 +171,21 @@ pub(super) fn run(
             ))
             .collect::<Vec<_>>()
             .join(", ")
-    ));
+    );
+    notes.push(best_reading.clone());
 
     // Figure: per reading, A and B against τ_max at the FE aspect ratios, ours against the paper's.
     let taus = s.tau_max_mpa.values();
     let ars: Vec<f64> = s.aspect_ratios.iter().map(|a| a.get()).collect();
     let mut panels = vec![];
     for f in &fits {
-        for (name, pick) in [("A", 0usize), ("B", 1)] {
+        for correction in Correction::BOTH {
+            let name = correction.name();
             let mut series = vec![];
             for (k, &ar) in ars.iter().enumerate() {
                 let color = palette::CYCLE[k % palette::CYCLE.len()];
                 let surface = |c: &Coefficients| -> Vec<(f64, f64)> {
-                    let coeffs = if pick == 0 { &c.a } else { &c.b };
+                    let coeffs = correction.of(c);
                     taus.iter()
                         .map(|&t| (t, quadratic_surface(coeffs, ar, t)))
                         .collect()
@@ -176,7 +216,7 @@ pub(super) fn run(
                     format!("MSE paper {}", crate::numfmt::sig_digits(f.paper_mse, 2)),
                 ],
                 // A falls with τ_max and AR, B rises: keep the legend off the lines
-                legend: Some(if pick == 0 {
+                legend: Some(if correction == Correction::A {
                     LegendPosition::LowerLeft
                 } else {
                     LegendPosition::UpperLeft
@@ -201,9 +241,13 @@ pub(super) fn run(
                 ars,
                 s.fe.tau_max_mpa.iter().map(|t| t.get()).collect::<Vec<_>>()
             ),
-            notes.last().cloned().unwrap_or_default(),
+            best_reading,
         ],
         font_px: 16,
     };
-    Ok((vec![coefficients, quality], figure, notes))
+    Ok(SceneResult {
+        tables: vec![coefficients, quality],
+        figure,
+        notes,
+    })
 }

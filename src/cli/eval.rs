@@ -1,0 +1,95 @@
+//! `wavy eval`: a closed-form law, forward (a/λ → p̄/E*) or inverse (p̄/E* → a/λ), as CSV.
+
+use super::input::{non_negative, one_of, out_of_range, positive, InputError};
+use anyhow::Result;
+use std::io::Write;
+use wavy::models::{
+    a_over_lambda_at, CoefficientSet, InverseError, ModelKind, ModelLaw, PressureLaw, Reading,
+};
+
+/// Arguments of `wavy eval`.
+#[derive(Debug, Clone, clap::Args)]
+#[command(group(clap::ArgGroup::new("input").required(true).args(["a_over_lambda", "p_over_estar"])))]
+pub struct EvalArgs {
+    /// Which law: `westergaard` (linear, frictionless, exact) or `wnl` (Westergaard corrected
+    /// by the fitted polynomials A and B).
+    #[arg(long, value_parser = one_of::<ModelKind>(ModelKind::ALL.map(ModelKind::key)))]
+    pub model: ModelKind,
+    /// Reading of the paper's Eq. 4 (WNL only): bracket-sq p̄_W·[B + x·A·cos²(πx)],
+    /// bracket-2x p̄_W·[B + x·A·cos(2πx)], literal p̄_W·B + x·A·cos²(πx).
+    #[arg(long, default_value = "bracket-sq", value_parser = one_of::<Reading>(Reading::ALL.map(Reading::name)))]
+    pub reading: Reading,
+    /// WNL coefficient set: the paper's Table 1, or our refit for one reading (use it with
+    /// that reading).
+    #[arg(long, default_value = "paper-table1", value_parser = one_of::<CoefficientSet>(CoefficientSet::ALL.map(CoefficientSet::name)))]
+    pub coefficients: CoefficientSet,
+    /// Aspect ratio Δ/λ (> 0).
+    #[arg(long, allow_negative_numbers = true)]
+    pub ar: f64,
+    /// Interfacial shear strength τ_max in MPa (≥ 0).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub tau_max_mpa: f64,
+    /// Contact half-widths a/λ ∈ [0, 0.5] (forward evaluation).
+    #[arg(long, num_args = 1.., allow_negative_numbers = true)]
+    pub a_over_lambda: Vec<f64>,
+    /// Mean pressures p̄/E* ≥ 0 (inverse evaluation).
+    #[arg(long, num_args = 1.., allow_negative_numbers = true)]
+    pub p_over_estar: Vec<f64>,
+}
+
+/// Runs `wavy eval`, writing CSV to `out`; an [`InputError`] names the flag.
+pub fn eval(args: &EvalArgs, out: &mut impl Write) -> Result<()> {
+    positive("--ar", args.ar)?;
+    non_negative("--tau-max-mpa", args.tau_max_mpa)?;
+    let law = ModelLaw::new(
+        args.model,
+        args.ar,
+        args.tau_max_mpa,
+        args.reading,
+        args.coefficients,
+    );
+    let (reading, coefficients) = match args.model {
+        ModelKind::Westergaard => ("", ""),
+        ModelKind::Wnl => (args.reading.name(), args.coefficients.name()),
+    };
+    // every input is checked before the first row is written
+    let mut rows = vec![];
+    for &x in &args.a_over_lambda {
+        if !(x.is_finite() && (0.0..=0.5).contains(&x)) {
+            return Err(out_of_range("--a-over-lambda", x, "[0, 0.5]").into());
+        }
+        rows.push((x, law.p_over_estar(x)));
+    }
+    for &p in &args.p_over_estar {
+        let full = law.full_contact_p_over_estar();
+        let x = a_over_lambda_at(&law, p).map_err(|e| match e {
+            InverseError::NegativeOrNotFinite { .. } => out_of_range("--p-over-estar", p, ">= 0"),
+            InverseError::AboveFullContact { .. } => out_of_range(
+                "--p-over-estar",
+                p,
+                format!("[0, {full}] (the full-contact pressure of this model)"),
+            ),
+            other => InputError::NotInvertible {
+                flag: "--p-over-estar".into(),
+                value: p.to_string(),
+                reason: other.to_string(),
+            },
+        })?;
+        rows.push((x, p));
+    }
+    writeln!(
+        out,
+        "model,reading,coefficients,aspect_ratio,tau_max_mpa,a_over_lambda,p_over_estar,extrapolated"
+    )?;
+    for (x, p) in rows {
+        writeln!(
+            out,
+            "{},{reading},{coefficients},{},{},{x},{p},{}",
+            args.model.key(),
+            args.ar,
+            args.tau_max_mpa,
+            law.is_extrapolated()
+        )?;
+    }
+    Ok(())
+}

@@ -1,0 +1,116 @@
+//! `wavy solve`: one finite-element load curve, one CSV row per converged load step.
+
+use super::input::{non_negative, one_of, out_of_range, positive, InputError};
+use anyhow::Result;
+use std::io::{IsTerminal, Write};
+use std::process::ExitCode;
+use wavy::defaults;
+use wavy::fe::{self, CurvePoint, Kinematics, LayerProblem, MeshLevel, SolveOptions};
+use wavy::runner::fe_cases::{FeCase, FePhysics};
+
+/// Arguments of `wavy solve`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct SolveArgs {
+    /// Aspect ratio Δ/λ (> 0).
+    #[arg(long, allow_negative_numbers = true)]
+    pub ar: f64,
+    /// Interfacial shear strength τ_max in MPa (≥ 0; 0 = frictionless).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub tau_max_mpa: f64,
+    /// Friction coefficient μ of the Coulomb–Orowan law (≥ 0; 0 = frictionless).
+    #[arg(long, default_value_t = defaults::friction_coefficient(), allow_negative_numbers = true)]
+    pub mu: f64,
+    /// Plane-strain modulus E* in MPa (> 0): τ_max/E* is what the physics sees.
+    #[arg(long, default_value_t = defaults::fe_estar_mpa(), allow_negative_numbers = true)]
+    pub estar_mpa: f64,
+    /// Bulk over shear modulus κ/G (> 0; 1000 is nearly incompressible, ν ≈ 0.4995).
+    #[arg(long, default_value_t = defaults::kappa_over_g(), allow_negative_numbers = true)]
+    pub kappa_over_g: f64,
+    /// Layer thickness over wavelength h/λ (> 0; 1 is practically a half-space).
+    #[arg(long, default_value_t = defaults::thickness_over_lambda(), allow_negative_numbers = true)]
+    pub thickness_over_lambda: f64,
+    /// `finite` (finite strain, neo-Hookean: the paper's physics) or `linear` (small strain).
+    #[arg(long, default_value = "finite", value_parser = one_of::<Kinematics>(Kinematics::ALL.map(Kinematics::name)))]
+    pub kinematics: Kinematics,
+    /// Mesh: coarse (32×16 elements), default (48×24), fine (72×36), or N elements along the
+    /// contact face (4 to 2048; N/2 across the thickness).
+    #[arg(long, default_value = "default", value_parser = super::input::mesh)]
+    pub mesh: MeshLevel,
+    /// Load until the contact half-width a/λ reaches this value (in (0, 0.5)).
+    #[arg(long, default_value_t = 0.45, allow_negative_numbers = true)]
+    pub until_a_over_lambda: f64,
+}
+
+impl SolveArgs {
+    /// The solver's problem and options, or an [`InputError`] naming the flag.
+    pub fn setup(&self) -> Result<(LayerProblem, SolveOptions), InputError> {
+        positive("--ar", self.ar)?;
+        positive("--estar-mpa", self.estar_mpa)?;
+        positive("--kappa-over-g", self.kappa_over_g)?;
+        positive("--thickness-over-lambda", self.thickness_over_lambda)?;
+        non_negative("--tau-max-mpa", self.tau_max_mpa)?;
+        non_negative("--mu", self.mu)?;
+        let x = self.until_a_over_lambda;
+        if !(x.is_finite() && x > 0.0 && x < 0.5) {
+            return Err(out_of_range("--until-a-over-lambda", x, "(0, 0.5)"));
+        }
+        let physics = FePhysics {
+            estar_mpa: self.estar_mpa,
+            thickness_over_lambda: self.thickness_over_lambda,
+            kappa_over_g: self.kappa_over_g,
+            friction_coefficient: self.mu,
+            elastic_slip_over_element: defaults::elastic_slip_over_element(),
+            kinematics: self.kinematics,
+        };
+        let options = SolveOptions {
+            until_a_over_lambda: x,
+            mesh: self.mesh,
+            ..SolveOptions::default()
+        };
+        let case = FeCase::new(&physics, self.ar, self.tau_max_mpa, options);
+        Ok((case.problem, case.options))
+    }
+}
+
+/// Runs `wavy solve`: the header, then each converged point as soon as it is known; exit 1,
+/// after the converged rows, when the solver cannot go on.
+pub fn solve(args: &SolveArgs, out: &mut impl Write) -> Result<ExitCode> {
+    let (problem, opts) = args.setup()?;
+    let bar = std::io::stderr().is_terminal().then(|| {
+        let b = indicatif::ProgressBar::new_spinner();
+        b.set_style(
+            indicatif::ProgressStyle::with_template("{spinner} [{elapsed_precise}] {msg}")
+                .expect("valid template"),
+        );
+        b
+    });
+    writeln!(out, "{}", CurvePoint::CSV_HEADER)?;
+    let mut write_error = None;
+    let result = fe::solve_curve(&problem, &opts, &mut |p| {
+        if let Some(b) = &bar {
+            b.set_message(format!(
+                "a/λ = {:.4}, p̄/E* = {:.5}",
+                p.a_over_lambda, p.p_over_estar
+            ));
+            b.tick();
+        }
+        if write_error.is_none() {
+            if let Err(e) = writeln!(out, "{}", p.csv_row()) {
+                write_error = Some(e);
+            }
+        }
+    });
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    if let Some(e) = write_error {
+        return Err(e.into());
+    }
+    match result {
+        Ok(_) => Ok(ExitCode::SUCCESS),
+        Err(failure) => {
+            eprintln!("error: the solver stopped: {}", failure.error);
+            Ok(ExitCode::from(1))
+        }
+    }
+}
