@@ -22,6 +22,9 @@ use thiserror::Error;
 pub enum SpecError {
     #[error("{origin}: cannot read the spec: {message}")]
     Read { origin: String, message: String },
+    /// A data file named by a spec (measured points) that cannot be used.
+    #[error("{origin}: cannot use the data file: {message}")]
+    Data { origin: String, message: String },
     #[error("{origin}: field `{field}`: {message}")]
     Parse {
         origin: String,
@@ -245,7 +248,7 @@ pub fn parse_document<T: DeserializeOwned>(text: &str, origin: &str) -> Result<T
     let de = toml::Deserializer::parse(text).map_err(|e| SpecError::Parse {
         origin: origin.into(),
         field: "(document)".into(),
-        message: e.to_string().trim_end().into(),
+        message: excerpt(e.to_string().trim_end()),
     })?;
     serde_path_to_error::deserialize(de).map_err(|e| {
         // toml::Spanned wraps its value in a private field; the user's field is its parent.
@@ -261,7 +264,7 @@ pub fn parse_document<T: DeserializeOwned>(text: &str, origin: &str) -> Result<T
         SpecError::Parse {
             origin: origin.into(),
             field,
-            message: e.into_inner().to_string().trim_end().into(),
+            message: excerpt(e.into_inner().to_string().trim_end()),
         }
     })
 }
@@ -391,6 +394,34 @@ impl Validator<'_> {
     pub fn models(&self, field: &str, m: &ModelSelection) -> Result<(), SpecError> {
         self.non_empty(&format!("{field}.draw"), m.draw.len())
     }
+}
+
+/// Longest line of a quoted spec excerpt in an error message, in characters.
+const EXCERPT_LINE_CHARS: usize = 160;
+/// Most lines of an error message.
+const EXCERPT_LINES: usize = 12;
+
+/// `message` with each line cut to [`EXCERPT_LINE_CHARS`] and at most [`EXCERPT_LINES`] lines:
+/// the TOML parser quotes the offending line, which may be megabytes long (a 10⁶-element
+/// array on one line).
+fn excerpt(message: &str) -> String {
+    let mut out: Vec<String> = message
+        .lines()
+        .take(EXCERPT_LINES)
+        .map(|l| match l.char_indices().nth(EXCERPT_LINE_CHARS) {
+            Some((cut, _)) => format!(
+                "{} … ({} more characters)",
+                &l[..cut],
+                l[cut..].chars().count()
+            ),
+            None => l.to_string(),
+        })
+        .collect();
+    let total = message.lines().count();
+    if total > EXCERPT_LINES {
+        out.push(format!("… ({} more lines)", total - EXCERPT_LINES));
+    }
+    out.join("\n")
 }
 
 /// 1-based line and column of a byte offset.

@@ -1,7 +1,7 @@
 //! `wavy eval`: a closed-form law, forward (a/λ → p̄/E*) or inverse (p̄/E* → a/λ), as CSV.
 
 use super::input::{non_negative, one_of, out_of_range, positive, InputError};
-use anyhow::Result;
+use anyhow::{Context, Result};
 use std::io::Write;
 use wavy::models::{
     a_over_lambda_at, CoefficientSet, InverseError, ModelKind, ModelLaw, PressureLaw, Reading,
@@ -24,10 +24,10 @@ pub struct EvalArgs {
     #[arg(long, default_value = "paper-table1", value_parser = one_of::<CoefficientSet>(CoefficientSet::ALL.map(CoefficientSet::name)))]
     pub coefficients: CoefficientSet,
     /// Aspect ratio Δ/λ (> 0).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub ar: f64,
     /// Interfacial shear strength τ_max in MPa (≥ 0).
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub tau_max_mpa: f64,
     /// Contact half-widths a/λ ∈ [0, 0.5] (forward evaluation).
     #[arg(long, num_args = 1.., allow_negative_numbers = true)]
@@ -52,28 +52,49 @@ pub fn eval(args: &EvalArgs, out: &mut impl Write) -> Result<()> {
         ModelKind::Westergaard => ("", ""),
         ModelKind::Wnl => (args.reading.name(), args.coefficients.name()),
     };
+    // the inputs that produced a value, for messages
+    let inputs = match args.model {
+        ModelKind::Westergaard => format!("--model westergaard --ar {:?}", args.ar),
+        ModelKind::Wnl => format!(
+            "--model wnl --reading {reading} --coefficients {coefficients} --ar {:?} --tau-max-mpa {:?}",
+            args.ar, args.tau_max_mpa
+        ),
+    };
     // every input is checked before the first row is written
     let mut rows = vec![];
     for &x in &args.a_over_lambda {
         if !(x.is_finite() && (0.0..=0.5).contains(&x)) {
             return Err(out_of_range("--a-over-lambda", x, "[0, 0.5]").into());
         }
-        rows.push((x, law.p_over_estar(x)));
+        let p = law
+            .physical_p_over_estar(x)
+            .with_context(|| format!("{inputs} --a-over-lambda {x:?}"))?;
+        rows.push((x, p));
     }
     for &p in &args.p_over_estar {
         let full = law.full_contact_p_over_estar();
-        let x = a_over_lambda_at(&law, p).map_err(|e| match e {
-            InverseError::NegativeOrNotFinite { .. } => out_of_range("--p-over-estar", p, ">= 0"),
-            InverseError::AboveFullContact { .. } => out_of_range(
-                "--p-over-estar",
-                p,
-                format!("[0, {full}] (the full-contact pressure of this model)"),
-            ),
-            other => InputError::NotInvertible {
-                flag: "--p-over-estar".into(),
-                value: p.to_string(),
-                reason: other.to_string(),
-            },
+        let x = a_over_lambda_at(&law, p).map_err(|e| -> anyhow::Error {
+            match e {
+                InverseError::NegativeOrNotFinite { .. } => {
+                    out_of_range("--p-over-estar", p, ">= 0").into()
+                }
+                // a computation that failed, not a bad value: exit 1
+                InverseError::NotFinite { .. } => {
+                    anyhow::Error::new(e).context(format!("{inputs} --p-over-estar {p}"))
+                }
+                InverseError::AboveFullContact { .. } => out_of_range(
+                    "--p-over-estar",
+                    p,
+                    format!("[0, {full}] (the full-contact pressure of this model)"),
+                )
+                .into(),
+                other => InputError::NotInvertible {
+                    flag: "--p-over-estar".into(),
+                    value: p.to_string(),
+                    reason: other.to_string(),
+                }
+                .into(),
+            }
         })?;
         rows.push((x, p));
     }

@@ -72,3 +72,79 @@ pub fn mesh(s: &str) -> Result<MeshLevel, String> {
         )
     })
 }
+
+/// Flags that take a list of numbers.
+const NUMBER_LISTS: [&str; 2] = ["--a-over-lambda", "--p-over-estar"];
+
+/// Rewrites negative numbers in exponent or word form (`-1e-3`, `-inf`) inside the value lists
+/// of [`NUMBER_LISTS`] to plain decimals (`-0.001`, `-1e999`), which clap recognises as
+/// negative numbers rather than short flags; the value is unchanged (shortest round-trip
+/// decimal), so the range check can name the flag, the value and the allowed range.
+/// Single-value numeric flags take any hyphenated value directly (`allow_hyphen_values`).
+pub fn normalise_negative_numbers(
+    args: impl IntoIterator<Item = std::ffi::OsString>,
+) -> Vec<std::ffi::OsString> {
+    let mut in_list = false;
+    args.into_iter()
+        .map(|arg| {
+            let Some(text) = arg.to_str() else {
+                in_list = false;
+                return arg;
+            };
+            if text.starts_with("--") {
+                in_list = NUMBER_LISTS.contains(&text);
+                return arg;
+            }
+            match text.parse::<f64>() {
+                Ok(v) if in_list && text.starts_with('-') && v.is_finite() => format!("{v}").into(),
+                Ok(v) if in_list && text.starts_with('-') && v.is_infinite() => "-1e999".into(),
+                _ => arg,
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn negative_numbers_in_lists_become_plain_decimals_of_the_same_value() {
+        let args = [
+            "eval",
+            "--ar",
+            "-1e-3",
+            "--a-over-lambda",
+            "0.1",
+            "-1e-3",
+            "-inf",
+            "-2",
+            "--p-over-estar",
+            "-1E+2",
+            "--tau-max-mpa",
+            "-1e-3",
+        ];
+        let out: Vec<String> = normalise_negative_numbers(args.map(Into::into))
+            .into_iter()
+            .map(|a| a.into_string().unwrap())
+            .collect();
+        assert_eq!(
+            out,
+            [
+                "eval",
+                "--ar",
+                "-1e-3",
+                "--a-over-lambda",
+                "0.1",
+                "-0.001",
+                "-1e999",
+                "-2",
+                "--p-over-estar",
+                "-100",
+                "--tau-max-mpa",
+                "-1e-3",
+            ]
+        );
+        assert_eq!("-1e999".parse::<f64>(), Ok(f64::NEG_INFINITY));
+    }
+}

@@ -12,22 +12,22 @@ use wavy::runner::fe_cases::{FeCase, FePhysics};
 #[derive(Debug, Clone, clap::Args)]
 pub struct SolveArgs {
     /// Aspect ratio Δ/λ (> 0).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub ar: f64,
     /// Interfacial shear strength τ_max in MPa (≥ 0; 0 = frictionless).
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub tau_max_mpa: f64,
     /// Friction coefficient μ of the Coulomb–Orowan law (≥ 0; 0 = frictionless).
-    #[arg(long, default_value_t = defaults::friction_coefficient(), allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults::friction_coefficient(), allow_hyphen_values = true)]
     pub mu: f64,
     /// Plane-strain modulus E* in MPa (> 0): τ_max/E* is what the physics sees.
-    #[arg(long, default_value_t = defaults::fe_estar_mpa(), allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults::fe_estar_mpa(), allow_hyphen_values = true)]
     pub estar_mpa: f64,
     /// Bulk over shear modulus κ/G (> 0; 1000 is nearly incompressible, ν ≈ 0.4995).
-    #[arg(long, default_value_t = defaults::kappa_over_g(), allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults::kappa_over_g(), allow_hyphen_values = true)]
     pub kappa_over_g: f64,
     /// Layer thickness over wavelength h/λ (> 0; 1 is practically a half-space).
-    #[arg(long, default_value_t = defaults::thickness_over_lambda(), allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults::thickness_over_lambda(), allow_hyphen_values = true)]
     pub thickness_over_lambda: f64,
     /// `finite` (finite strain, neo-Hookean: the paper's physics) or `linear` (small strain).
     #[arg(long, default_value = "finite", value_parser = one_of::<Kinematics>(Kinematics::ALL.map(Kinematics::name)))]
@@ -37,7 +37,7 @@ pub struct SolveArgs {
     #[arg(long, default_value = "default", value_parser = super::input::mesh)]
     pub mesh: MeshLevel,
     /// Load until the contact half-width a/λ reaches this value (in (0, 0.5)).
-    #[arg(long, default_value_t = 0.45, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.45, allow_hyphen_values = true)]
     pub until_a_over_lambda: f64,
 }
 

@@ -30,6 +30,14 @@ pub enum InverseError {
         full_contact_p_over_estar: f64,
     },
     #[error(
+        "the model is not finite (p/E* = {p_over_estar}) at a/λ = {a_over_lambda:.4}: it overflows \
+         for these inputs"
+    )]
+    NotFinite {
+        a_over_lambda: f64,
+        p_over_estar: f64,
+    },
+    #[error(
         "the model gives a negative pressure p/E* = {p_over_estar:.6e} at a/λ = {a_over_lambda:.4}; \
          it has no physical inverse"
     )]
@@ -63,10 +71,13 @@ pub fn check_invertible<L: PressureLaw + ?Sized>(law: &L) -> Result<(), InverseE
         .map(|s| s.1.abs())
         .fold(f64::MIN_POSITIVE, f64::max);
     let round_off = 1e-13 * scale;
-    if let Some(&(x, p)) = samples
-        .iter()
-        .find(|s| s.1 < -round_off || !s.1.is_finite())
-    {
+    if let Some(&(x, p)) = samples.iter().find(|s| !s.1.is_finite()) {
+        return Err(InverseError::NotFinite {
+            a_over_lambda: x,
+            p_over_estar: p,
+        });
+    }
+    if let Some(&(x, p)) = samples.iter().find(|s| s.1 < -round_off) {
         return Err(InverseError::NegativeModel {
             a_over_lambda: x,
             p_over_estar: p,

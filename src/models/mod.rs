@@ -20,13 +20,50 @@ pub use wnl::{Coefficients, Reading, Wnl};
 
 /// A mean-pressure law p̄/E* as a function of the contact half-width a/λ.
 pub trait PressureLaw {
-    /// Mean pressure over the plane-strain modulus, p̄/E*, at contact half-width `a_over_lambda`.
+    /// Mean pressure over the plane-strain modulus, p̄/E*, at contact half-width `a_over_lambda`,
+    /// unchecked (see [`PressureLaw::physical_p_over_estar`]).
     fn p_over_estar(&self, a_over_lambda: f64) -> f64;
+
+    /// p̄/E* when it is a physical answer: finite and not negative. A law evaluated where it
+    /// overflows (an enormous aspect ratio or shear strength) or where its correction
+    /// polynomials drive it below zero (the `literal` reading at small a/λ, WNL far outside
+    /// its fit domain) gives an error naming the point, never a number.
+    fn physical_p_over_estar(&self, a_over_lambda: f64) -> Result<f64, UnphysicalPressure> {
+        let p = self.p_over_estar(a_over_lambda);
+        if !p.is_finite() {
+            Err(UnphysicalPressure::NotFinite {
+                a_over_lambda,
+                p_over_estar: p,
+            })
+        } else if p < 0.0 {
+            Err(UnphysicalPressure::Negative {
+                a_over_lambda,
+                p_over_estar: p,
+            })
+        } else {
+            Ok(p)
+        }
+    }
 
     /// p̄/E* at full contact (a/λ = ½).
     fn full_contact_p_over_estar(&self) -> f64 {
         self.p_over_estar(0.5)
     }
+}
+
+/// Why a law's value is not a physical mean pressure.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+pub enum UnphysicalPressure {
+    #[error("p̄/E* = {p_over_estar} at a/λ = {a_over_lambda}: not a finite number (the law overflows for these inputs)")]
+    NotFinite {
+        a_over_lambda: f64,
+        p_over_estar: f64,
+    },
+    #[error("p̄/E* = {p_over_estar:.6e} < 0 at a/λ = {a_over_lambda}: a negative mean pressure is unphysical (the law is used where it does not hold)")]
+    Negative {
+        a_over_lambda: f64,
+        p_over_estar: f64,
+    },
 }
 
 /// A model law by name (`westergaard`, `wnl`), as specs and the command line select it.

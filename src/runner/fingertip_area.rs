@@ -231,7 +231,11 @@ fn run(title: &str, s: &FingertipAreaScene, spec_dir: &Path) -> Result<SceneResu
     match &s.measured_data {
         Some(rel) => {
             let path = spec_dir.join(rel);
-            match measured::read(&path)? {
+            let data = measured::read(&path).map_err(|e| SpecError::Data {
+                origin: path.display().to_string(),
+                message: format!("{e:#}"),
+            })?;
+            match data {
                 Some(m) => {
                     let who = m.provenance("digitised_by").unwrap_or_default();
                     series.push(Series::markers(

@@ -27,16 +27,14 @@ impl MeasuredPoints {
     }
 }
 
-/// Reads a data file; `Ok(None)` when there is no file at `path`.
+/// Reads a data file; `Ok(None)` when there is no file at `path` (errors do not repeat the path).
 pub fn read(path: &Path) -> Result<Option<MeasuredPoints>> {
     let text = match std::fs::read_to_string(path) {
         Ok(t) => t,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
-        Err(e) => return Err(e).with_context(|| format!("cannot read {}", path.display())),
+        Err(e) => return Err(e.into()),
     };
-    parse(&text)
-        .with_context(|| format!("{}", path.display()))
-        .map(Some)
+    parse(&text).map(Some)
 }
 
 /// Parses the text of a data file.

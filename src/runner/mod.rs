@@ -4,6 +4,7 @@
 //! temporary file in the target folder and renamed into place, so that a failed or
 //! interrupted run never leaves a partial CSV or SVG behind.
 
+pub mod atomic_write;
 pub mod correction_surfaces;
 pub mod deformed_mesh;
 pub mod fe_cases;
@@ -14,13 +15,13 @@ pub mod scenes;
 pub mod sweep;
 pub mod table1_refit;
 
+pub use atomic_write::write_atomic;
 pub use scenes::{Scene, SceneContext, SceneResult, Spec};
 
 use crate::models::{ModelKind, ModelLaw};
-use crate::spec::ModelSelection;
+use crate::spec::{ModelSelection, SpecError};
 use crate::table::{CompareError, Comparison, Table};
 use anyhow::{Context, Result};
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// What a scene produces: its tables, its SVG, and notes for the run's output.
@@ -64,9 +65,19 @@ pub fn compute_share(path: &Path, opts: &RunOptions) -> Result<(usize, usize)> {
 /// Reads and parses the spec at `path`.
 pub fn load_spec(path: &Path) -> Result<Spec> {
     let origin = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| crate::spec::SpecError::Read {
+    let read_error = |message: String| SpecError::Read {
         origin: origin.clone(),
-        message: e.to_string(),
+        message,
+    };
+    let bytes = std::fs::read(path).map_err(|e| read_error(e.to_string()))?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let at = e.utf8_error().valid_up_to();
+        let before = String::from_utf8_lossy(&e.as_bytes()[..at]);
+        let line = before.matches('\n').count() + 1;
+        let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+        read_error(format!(
+            "not valid UTF-8 at byte {at} (line {line}, column {column})"
+        ))
     })?;
     Ok(Spec::parse(&text, &origin)?)
 }
@@ -75,11 +86,12 @@ fn stem_of(path: &Path) -> Result<String> {
     path.file_stem()
         .and_then(|s| s.to_str())
         .map(String::from)
-        .with_context(|| {
-            format!(
-                "{}: the spec's file name is not valid UTF-8",
-                path.display()
-            )
+        .ok_or_else(|| {
+            SpecError::Read {
+                origin: path.display().to_string(),
+                message: "the spec's file name is not valid UTF-8 (it names the outputs)".into(),
+            }
+            .into()
         })
 }
 
@@ -108,7 +120,9 @@ pub fn run_spec(
     })
 }
 
-/// Writes a scene's SVG and CSVs into `dir`, each atomically; returns the paths written.
+/// Writes a scene's SVG and CSVs into `dir`, each atomically; returns the paths written. Every
+/// target is checked before the first is written, so a target that cannot be replaced (a
+/// folder in its place) leaves every output as it was.
 pub fn write_outputs(out: &SceneOutput, dir: &Path) -> Result<Vec<PathBuf>> {
     let mut files: Vec<(PathBuf, &[u8])> =
         vec![(dir.join(format!("{}.svg", out.stem)), out.svg.as_bytes())];
@@ -119,34 +133,20 @@ pub fn write_outputs(out: &SceneOutput, dir: &Path) -> Result<Vec<PathBuf>> {
         .collect();
     files.extend(csvs.iter().map(|(p, s)| (p.clone(), s.as_bytes())));
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    for (path, _) in &files {
+        if path.is_dir() {
+            anyhow::bail!(
+                "cannot write {}: a folder is in its place (nothing was written)",
+                path.display()
+            );
+        }
+    }
+    atomic_write::remove_stale_temporaries(dir)?;
     for (path, bytes) in &files {
         write_atomic(path, bytes)?;
     }
+    atomic_write::remove_own_temporaries(dir);
     Ok(files.into_iter().map(|(p, _)| p).collect())
-}
-
-/// Writes `bytes` to `path` through a temporary file in the same folder and a rename.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let mut tmp = tempfile::NamedTempFile::new_in(dir)
-        .with_context(|| format!("cannot write in {}", dir.display()))?;
-    tmp.write_all(bytes)
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        // tempfile creates 0600 files; outputs are ordinary, readable files.
-        tmp.as_file()
-            .set_permissions(std::fs::Permissions::from_mode(0o644))
-            .ok();
-    }
-    tmp.as_file().sync_all().ok();
-    tmp.persist(path)
-        .with_context(|| format!("cannot replace {}", path.display()))?;
-    Ok(())
 }
 
 /// Why a table could not be compared with its golden file.

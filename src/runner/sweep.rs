@@ -9,7 +9,7 @@
 //! machines sharing the cache folder (a Slurm job array) split the work and a final unsharded run
 //! assembles the figure from the cache.
 
-use super::write_atomic;
+use super::atomic_write::{self, write_atomic};
 use anyhow::{bail, Context, Result};
 use sha2::{Digest, Sha256};
 use std::io::IsTerminal;
@@ -112,6 +112,7 @@ pub fn run<C: SweepCase, R: Cacheable>(
             opts.cache_dir.display()
         )
     })?;
+    atomic_write::remove_stale_temporaries(&opts.cache_dir)?;
     let mine = |i: usize| opts.shard.is_none_or(|s| i % s.count == s.index);
     let mut results: Vec<Option<R>> = Vec::with_capacity(cases.len());
     let mut todo = vec![];
@@ -158,6 +159,7 @@ pub fn run<C: SweepCase, R: Cacheable>(
         }
     });
     let computed = done.into_inner().expect("no worker panicked");
+    atomic_write::remove_own_temporaries(&opts.cache_dir);
     if let Some(b) = bar {
         b.finish_and_clear();
     }
