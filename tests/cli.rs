@@ -406,3 +406,274 @@ fn closed_stdout_pipe_ends_quietly_with_exit_0() {
         assert!(stderr(&o).is_empty(), "{}: {}", args[0], stderr(&o));
     }
 }
+
+/// Issue #9 (3, 4): a value that overflows or is negative is an error naming the inputs
+/// (exit 1), never a NaN, ±inf or negative row with exit 0.
+#[test]
+fn eval_refuses_non_finite_and_negative_pressures() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &[
+                "--model",
+                "wnl",
+                "--ar",
+                "1e200",
+                "--a-over-lambda",
+                "0",
+                "0.25",
+            ],
+            "--ar 1e200",
+        ),
+        (
+            &[
+                "--model",
+                "westergaard",
+                "--ar",
+                "1e308",
+                "--a-over-lambda",
+                "0",
+                "0.25",
+            ],
+            "not a finite number",
+        ),
+        (
+            &[
+                "--model",
+                "wnl",
+                "--reading",
+                "literal",
+                "--ar",
+                "0.2",
+                "--tau-max-mpa",
+                "0.1",
+                "--a-over-lambda",
+                "0.02",
+            ],
+            "< 0 at a/λ = 0.02",
+        ),
+        (
+            &[
+                "--model",
+                "wnl",
+                "--ar",
+                "0.6",
+                "--tau-max-mpa",
+                "2",
+                "--a-over-lambda",
+                "0.25",
+            ],
+            "negative mean pressure is unphysical",
+        ),
+        (
+            &[
+                "--model",
+                "wnl",
+                "--ar",
+                "0.1",
+                "--tau-max-mpa",
+                "1e300",
+                "--p-over-estar",
+                "0.1",
+            ],
+            "overflows",
+        ),
+    ];
+    for (args, message) in cases {
+        let mut all = vec!["eval"];
+        all.extend_from_slice(args);
+        let o = wavy(&all, here());
+        assert_eq!(o.status.code(), Some(1), "{all:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(message), "{all:?}: {}", stderr(&o));
+        assert!(!stderr(&o).contains("negative pressure p/E* = NaN"));
+        assert!(stdout(&o).is_empty(), "{all:?}: {}", stdout(&o));
+    }
+}
+
+/// Issue #9 (5, 7): negative numbers with an exponent or in word form reach the range check,
+/// and an unknown coefficient set is refused whatever the model.
+#[test]
+fn hyphenated_numbers_and_unknown_names_are_refused_by_flag() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &[
+                "eval",
+                "--model",
+                "wnl",
+                "--ar",
+                "0.1",
+                "--tau-max-mpa",
+                "-1e-3",
+                "--a-over-lambda",
+                "0.1",
+            ],
+            "--tau-max-mpa = -0.001 is out of range; allowed: >= 0",
+        ),
+        (
+            &[
+                "eval",
+                "--model",
+                "wnl",
+                "--ar",
+                "-inf",
+                "--a-over-lambda",
+                "0.1",
+            ],
+            "--ar = -inf is out of range; allowed: > 0",
+        ),
+        (
+            &[
+                "eval",
+                "--model",
+                "wnl",
+                "--ar",
+                "0.1",
+                "--a-over-lambda",
+                "0.1",
+                "-1e-3",
+            ],
+            "--a-over-lambda = -0.001 is out of range; allowed: [0, 0.5]",
+        ),
+        (
+            &["solve", "--ar", "0.1", "--mu", "-1e-2"],
+            "--mu = -0.01 is out of range; allowed: >= 0",
+        ),
+        (
+            &[
+                "eval",
+                "--model",
+                "westergaard",
+                "--coefficients",
+                "nonsense",
+                "--ar",
+                "0.1",
+                "--a-over-lambda",
+                "0.1",
+            ],
+            "nonsense",
+        ),
+    ];
+    for (args, message) in cases {
+        let o = wavy(args, here());
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(message), "{args:?}: {}", stderr(&o));
+        assert!(stdout(&o).is_empty());
+    }
+}
+
+/// A spec in a scratch folder, with the given text (or bytes) under `name`.
+fn scratch_spec(name: &std::ffi::OsStr, bytes: &[u8]) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join(name), bytes).unwrap();
+    dir
+}
+
+fn fig5_text() -> String {
+    std::fs::read_to_string(here().join("experiments/fig5_warman_ennos.toml")).unwrap()
+}
+
+/// Issue #9 (6, 7): bad spec files and data files are input errors (exit 2) that say where,
+/// in a message of bounded size, and nothing is written.
+#[test]
+fn bad_spec_and_data_files_exit_2_with_bounded_messages() {
+    use std::os::unix::ffi::OsStrExt;
+    let run = |dir: &Path, spec: &std::ffi::OsStr| {
+        let o = Command::new(env!("CARGO_BIN_EXE_wavy"))
+            .arg("run")
+            .arg(spec)
+            .args(["--out", "out"])
+            .current_dir(dir)
+            .output()
+            .unwrap();
+        assert!(!dir.join("out").exists(), "nothing written");
+        o
+    };
+    // a 10⁶-element array with one bad value
+    let text = std::fs::read_to_string(here().join("experiments/fig3_fe_vs_model.toml"))
+        .unwrap()
+        .replacen(
+            "aspect_ratios = [0.1, 0.18, 0.3]",
+            &format!("aspect_ratios = [{}-0.5]", "0.1,".repeat(1_000_000)),
+            1,
+        );
+    let name = std::ffi::OsStr::new("big.toml");
+    let d = scratch_spec(name, text.as_bytes());
+    let o = run(d.path(), name);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).len() < 4000, "{} bytes", stderr(&o).len());
+    assert!(
+        stderr(&o).contains("big.toml: field `fe_vs_model.aspect_ratios[1000000]`"),
+        "{}",
+        stderr(&o)
+    );
+    // invalid UTF-8, named by byte, line and column
+    let mut bytes = fig5_text().into_bytes();
+    let at = bytes.iter().position(|&b| b == b'\n').unwrap() + 1;
+    bytes.insert(at, 0xff);
+    let name = std::ffi::OsStr::new("latin.toml");
+    let d = scratch_spec(name, &bytes);
+    let o = run(d.path(), name);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains(&format!("not valid UTF-8 at byte {at} (line 2, column 1)")),
+        "{}",
+        stderr(&o)
+    );
+    // a spec whose name is not UTF-8
+    let name = std::ffi::OsStr::from_bytes(b"fig\xff.toml");
+    let d = scratch_spec(name, fig5_text().as_bytes());
+    let o = run(d.path(), name);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("file name is not valid UTF-8"),
+        "{}",
+        stderr(&o)
+    );
+    // a measured-data file without provenance, and a folder in its place
+    let name = std::ffi::OsStr::new("fig5.toml");
+    let d = scratch_spec(name, fig5_text().as_bytes());
+    std::fs::create_dir(d.path().join("data")).unwrap();
+    std::fs::write(
+        d.path().join("data/warman_ennos_2009.csv"),
+        "load_n,area_mm2\n1,2\n",
+    )
+    .unwrap();
+    let o = run(d.path(), name);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("cannot use the data file"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(stderr(&o).contains("provenance"), "{}", stderr(&o));
+    std::fs::remove_file(d.path().join("data/warman_ennos_2009.csv")).unwrap();
+    std::fs::create_dir(d.path().join("data/warman_ennos_2009.csv")).unwrap();
+    let o = run(d.path(), name);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("cannot use the data file"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// Issue #9 (7): every output target is checked before the first is written: a folder in
+/// place of the CSV leaves the SVG as it was.
+#[test]
+fn an_unwritable_target_leaves_every_output_as_it_was() {
+    let name = std::ffi::OsStr::new("fig5.toml");
+    let d = scratch_spec(name, fig5_text().as_bytes());
+    let out = d.path().join("out");
+    std::fs::create_dir_all(out.join("fig5.csv")).unwrap();
+    std::fs::write(out.join("fig5.svg"), "old").unwrap();
+    let o = wavy(&["run", "fig5.toml", "--out", "out"], d.path());
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("a folder is in its place"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("fig5.svg")).unwrap(),
+        "old"
+    );
+}

@@ -7,3 +7,6 @@ pub mod input;
 pub mod output;
 pub mod solve;
 pub mod specs;
+
+#[cfg(test)]
+mod fuzz;

@@ -138,6 +138,19 @@ impl ModelLaw {
         }
     }
 
+    /// The law in words, for messages: `Westergaard` or `WNL (reading, coefficients)`.
+    pub fn describe(&self) -> String {
+        match self {
+            ModelLaw::Westergaard(_) => "Westergaard".into(),
+            ModelLaw::Wnl(m) => format!(
+                "WNL (reading {}, A = {:.4}, B = {:.4})",
+                m.reading,
+                m.correction_a(),
+                m.correction_b()
+            ),
+        }
+    }
+
     /// True when the law is evaluated outside the domain its coefficients were fitted on.
     /// Westergaard has no fitted part and never extrapolates.
     pub fn is_extrapolated(&self) -> bool {

@@ -11,7 +11,7 @@ use crate::spec::{
     A_OVER_LAMBDA_ALLOWED,
 };
 use crate::table::{Cell, Table};
-use anyhow::Result;
+use anyhow::{Context, Result};
 use serde::Deserialize;
 
 /// Paper Fig. 3: one panel per (AR, τ_max), p̄/E* against a/λ.
@@ -147,6 +147,15 @@ fn run(title: &str, s: &FeVsModelScene, opts: &RunOptions) -> Result<SceneResult
             let extrapolated = laws.iter().any(|(_, l)| l.is_extrapolated());
             if extrapolated {
                 extrapolated_panels.push(format!("AR = {ar}, τ_max = {tau} MPa"));
+            }
+            // a negative or non-finite model value is an error, never a drawn line
+            let drawn = laws.iter().map(|(_, l)| l).chain(&compare);
+            for law in drawn {
+                for &x in &xs {
+                    law.physical_p_over_estar(x).with_context(|| {
+                        format!("panel AR = {ar}, τ_max = {tau} MPa, {}", law.describe())
+                    })?;
+                }
             }
             for &x in &xs {
                 let mut row: Vec<Cell> = vec![ar.into(), tau.into(), x.into()];

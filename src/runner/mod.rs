@@ -53,6 +53,7 @@ pub fn run_spec_file(path: &Path, opts: &RunOptions) -> Result<SceneOutput> {
         path.parent().unwrap_or(Path::new(".")),
         opts,
     )
+    .with_context(|| path.display().to_string())
 }
 
 /// With a shard in `opts`: computes this shard's share of the spec's finite-element cases
