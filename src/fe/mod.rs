@@ -34,6 +34,7 @@ pub mod contact;
 pub mod convergence;
 pub mod element;
 pub mod error;
+pub mod friction;
 pub mod linsys;
 pub mod material;
 pub mod mesh;
@@ -41,12 +42,12 @@ pub mod model;
 pub mod shear_test;
 pub mod solver;
 
-pub use contact::{CoulombOrowan, Interface};
 pub use convergence::{
     convergence_table, mesh_convergence, mesh_convergence_levels, p_at, ConvergenceRow,
     ConvergenceTable,
 };
 pub use error::{CurveFailure, SolveError};
+pub use friction::{CoulombOrowan, Interface};
 pub use material::estar_over_g;
 pub use mesh::Grading;
 
