@@ -32,6 +32,7 @@
 
 pub mod contact;
 pub mod convergence;
+pub mod edge;
 pub mod element;
 pub mod error;
 pub mod friction;
@@ -46,6 +47,7 @@ pub use convergence::{
     convergence_table, mesh_convergence, mesh_convergence_levels, p_at, ConvergenceRow,
     ConvergenceTable,
 };
+pub use edge::{EdgeRule, DISCRETE_EDGE_FRACTION};
 pub use error::{CurveFailure, SolveError};
 pub use friction::{CoulombOrowan, Interface};
 pub use material::estar_over_g;
@@ -130,46 +132,6 @@ impl Default for LayerProblem {
             kinematics: Kinematics::Finite,
             interface: Interface::Frictionless,
         }
-    }
-}
-
-/// Rule placing the contact edge `a` inside `[x_{k−1}, x_k]` (current positions) at an
-/// edge event on node `k`: node `k` touches with zero force, node `k − 1` carries force
-/// (see `solver::trace`).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub enum EdgeRule {
-    /// `a = x_{k−1} + φ (x_k − x_{k−1})` with a fixed fraction `φ`. Near the edge the
-    /// discrete solution is self-similar at the scale of the element (the far field is
-    /// the `√(a − x)` pressure / `(x − a)^{3/2}` gap of the continuum, the mesh is locally
-    /// uniform), so the edge of the continuum solution sits at a mesh-independent
-    /// fraction `φ` of the last loaded element; any rule that uses nodal values at a
-    /// distance `O(h)` from the edge errs by `O(h)` unless it reproduces that fraction.
-    /// Default [`DISCRETE_EDGE_FRACTION`].
-    Fraction(f64),
-    /// Fit of the periodic Westergaard gap shape `g ∝ G(x; a)` through the vertical gaps
-    /// of nodes `k + 1`, `k + 2` (exact in the linear limit, `(x − a)^{3/2}` near the
-    /// edge). Measured: as good as [`EdgeRule::Fraction`] at AR = 0.1, but at AR = 0.3
-    /// the finite-strain gap is not of that shape and the rule errs by ≈ 0.2 `h`.
-    PeriodicGap,
-    /// Fit of `g ∝ (x − a)^{3/2}` through the vertical gaps of nodes `k + 1`, `k + 2`.
-    GapPower,
-}
-
-/// The discrete edge fraction `φ` of [`EdgeRule::Fraction`] for the Q1/P0 element with
-/// the default [`Grading`], calibrated on the exact solution: with linear kinematics,
-/// AR = 0.01, κ/G = 1000, the `a` that Westergaard's `p̄/E* = π (Δ/λ) sin²(π a/λ)` gives
-/// for the computed `p̄` lies at `φ = 0.633 … 0.655` of `[x_{k−1}, x_k]` over
-/// a/λ ∈ [0.1, 0.35] on the 32×16, 64×32 and 128×64 meshes (medians 0.639, 0.638,
-/// 0.644; `PHI_CALIB=1 cargo run --release --example fe_study`). With `peak_ratio = 2`
-/// the same measurement gives 0.643 … 0.668 (medians 0.645–0.647): `φ` depends only
-/// weakly on the shape of the surface elements. Check, finite kinematics: the
-/// Richardson-extrapolated edge of the AR = 0.1 and AR = 0.3 curves sits at
-/// `φ = 0.60 … 0.67`.
-pub const DISCRETE_EDGE_FRACTION: f64 = 0.64;
-
-impl Default for EdgeRule {
-    fn default() -> Self {
-        EdgeRule::Fraction(DISCRETE_EDGE_FRACTION)
     }
 }
 

@@ -29,6 +29,15 @@ use super::material::NeoHooke;
 use super::mesh::Mesh;
 use super::Kinematics;
 
+/// Iteration cap of the closest-point projection ([`Model::project_closest`]). Newton on
+/// the closest-point equation converges quadratically from a node within an element of
+/// the surface; the cap is a safeguard.
+const PROJECTION_MAX_ITERATIONS: usize = 20;
+
+/// The closest-point projection stops once its correction is below this (units of λ):
+/// about ten ulps of a position `x ≤ ½` (one ulp is 1.1·10⁻¹⁶), i.e. at round-off.
+const PROJECTION_STEP_TOL: f64 = 1e-15;
+
 /// Boundary condition of the lateral faces `X = 0` and `X = ½`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Lateral {
@@ -690,7 +699,7 @@ impl Model {
         }
         let [x0, y0] = st.x[n];
         let mut x = x0;
-        for _ in 0..20 {
+        for _ in 0..PROJECTION_MAX_ITERATIONS {
             let (ys, s, c) = (
                 self.indenter.y(x),
                 self.indenter.slope(x),
@@ -703,7 +712,7 @@ impl Model {
             }
             let dx = f / df;
             x -= dx;
-            if dx.abs() < 1e-15 {
+            if dx.abs() < PROJECTION_STEP_TOL {
                 break;
             }
         }
