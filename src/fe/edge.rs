@@ -5,17 +5,17 @@
 //! The points of the load curve are *edge events*: the slab displacement `d` at which a
 //! chosen contact-face node `k` (by default the first free node; see
 //! [`SolveOptions::da_target`]) touches the indenter with zero contact force
-//! ([`next_target`]). Node `k` is kept free and the extra equation `g_k = 0` fixes `d`:
-//! first by the bordered Newton method ([`newton_edge`], `d` an unknown); if that fails,
+//! (`next_target`). Node `k` is kept free and the extra equation `g_k = 0` fixes `d`:
+//! first by the bordered Newton method (`newton_edge`, `d` an unknown); if that fails,
 //! by a secant/regula-falsi (Illinois) search on `d` with ordinary Newton solves, in
 //! which a failed trial load is retried from the last open-gap state with half the
-//! increment ([`EventSearch::find`]). The other nodes follow the active-set rules.
+//! increment (`EventSearch::find`). The other nodes follow the active-set rules.
 //!
 //! # Contact-edge location at an event
 //! The discrete solution has zero gap up to `x_k`, but its nodal forces are the
 //! work-equivalent integrals `∫ p N_i dx`, so zero force on node `k` means the pressure
 //! vanishes beyond `x_{k−1}`: the edge lies in `[x_{k−1}, x_k]` (current positions). The
-//! default rule ([`EdgeRule`], [`edge_position`]) puts it at the fixed fraction
+//! default rule ([`EdgeRule`], `edge_position`) puts it at the fixed fraction
 //! [`DISCRETE_EDGE_FRACTION`] of that interval, calibrated on Westergaard's solution.
 //! Measured (AR = 0.01, linear, a/λ ≈ 0.11): `a = x_k` errs by −5 % in `p̄` and the
 //! midpoint by +2 % (48×24 mesh). Gap fits through the next free nodes
@@ -654,4 +654,57 @@ fn periodic_gap_fit(x1: f64, x2: f64, ratio: f64, lo: f64, hi: f64) -> f64 {
         }
     }
     0.5 * (l + h)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [`periodic_gap_fit`] inverts the gap ratio of [`periodic_gap_shape`] inside the
+    /// interval and clamps outside it.
+    #[test]
+    fn periodic_gap_fit_recovers_the_edge() {
+        let (lo, hi) = (0.2, 0.22);
+        let (x1, x2) = (0.24, 0.26);
+        let ratio = |a: f64| periodic_gap_shape(x1, a) / periodic_gap_shape(x2, a);
+        for a in [0.201, 0.21, 0.219] {
+            let fit = periodic_gap_fit(x1, x2, ratio(a), lo, hi);
+            assert!((fit - a).abs() < 1e-12, "a = {a}: fit {fit}");
+        }
+        assert_eq!(periodic_gap_fit(x1, x2, ratio(0.19), lo, hi), lo);
+        assert_eq!(periodic_gap_fit(x1, x2, ratio(0.23), lo, hi), hi);
+    }
+
+    fn at_load(d: f64) -> State {
+        State {
+            x: Vec::new(),
+            active: Vec::new(),
+            d,
+            dx: 0.0,
+            slip: Vec::new(),
+        }
+    }
+
+    /// The secant search: extrapolation to `g = 0` before a closed gap is found,
+    /// regula falsi inside the bracket after, and the Illinois scaling of an end kept
+    /// twice.
+    #[test]
+    fn bracket_extrapolates_then_brackets_with_illinois() {
+        let mut bracket = Bracket {
+            lo: (at_load(1.0), 1.0),
+            lo_prev: Some((at_load(0.0), 2.0)),
+            hi: None,
+            last_kept: None,
+        };
+        // secant through (0, 2) and (1, 1): g = 0 at d = 2
+        assert_eq!(bracket.next_load(0.0, 1.0, 3.0), 2.0);
+        bracket.insert(at_load(2.0), -1.0);
+        // regula falsi between (1, 1) and (2, −1)
+        assert_eq!(bracket.next_load(0.0, 1.0, 3.0), 1.5);
+        bracket.insert(at_load(1.5), -0.5);
+        // the open end is kept twice: its gap is scaled
+        assert_eq!(bracket.lo.1, ILLINOIS_FACTOR);
+        let t = ILLINOIS_FACTOR / (ILLINOIS_FACTOR + 0.5);
+        assert_eq!(bracket.next_load(0.0, 1.0, 3.0), 1.0 + t * 0.5);
+    }
 }

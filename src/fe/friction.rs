@@ -299,3 +299,73 @@ impl FrictionEval {
         self.w * law.tau_max * self.phi * (dl[0] * slot[0] + dl[1] * slot[1])
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `∂ℓ/∂P` of [`tributary_length`] against central differences, for an interior node
+    /// and for either end of the face.
+    #[test]
+    fn tributary_length_derivative_matches_central_differences() {
+        let node = [0.2, -0.01];
+        let (prev, next) = ([0.17, -0.004], [0.235, -0.02]);
+        let h = 1e-7;
+        for neighbours in [
+            [Some(prev), Some(next)],
+            [None, Some(next)],
+            [Some(prev), None],
+        ] {
+            let points = [neighbours[0], Some(node), neighbours[1]];
+            let (_, dell) = tributary_length(node, neighbours);
+            for (j, p) in points.iter().enumerate() {
+                let Some(p) = *p else {
+                    assert_eq!(dell[j], [0.0; 2], "absent neighbour {j}");
+                    continue;
+                };
+                for i in 0..2 {
+                    let ell_moved = |delta: f64| {
+                        let mut moved = points;
+                        let mut q = p;
+                        q[i] += delta;
+                        moved[j] = Some(q);
+                        tributary_length(moved[1].expect("node"), [moved[0], moved[2]]).0
+                    };
+                    let fd = (ell_moved(h) - ell_moved(-h)) / (2.0 * h);
+                    assert!(
+                        (fd - dell[j][i]).abs() <= 1e-7,
+                        "∂ℓ/∂P[{j}][{i}] = {} vs finite difference {fd}",
+                        dell[j][i]
+                    );
+                }
+            }
+        }
+    }
+
+    /// Return mapping: `φ` is continuous at `|e*| = e_c` and saturates beyond, the
+    /// threshold is `min(μ N, τ_max ℓ)`, and the committed slip is `e_c φ`.
+    #[test]
+    fn return_mapping_saturates_at_the_threshold() {
+        let law = FrictionLaw {
+            mu: 0.5,
+            tau_max: 0.1,
+            slip_c: 1e-3,
+        };
+        let w = 1.2;
+        for sign in [1.0, -1.0] {
+            let (phi, dphi) = law.mobilisation(sign * law.slip_c, w);
+            assert_eq!((phi, dphi), (sign, w / law.slip_c));
+            assert_eq!(law.mobilisation(sign * 2.0 * law.slip_c, w), (sign, 0.0));
+            assert_eq!(law.mobilisation(sign * 0.5 * law.slip_c, w).0, sign * 0.5);
+            let committed = law.commit(Some(sign * 3.0 * law.slip_c), 0.25);
+            assert_eq!(
+                (committed.elastic, committed.anchor_x),
+                (sign * law.slip_c, 0.25)
+            );
+        }
+        assert_eq!(law.commit(None, 0.25), SlipHistory::fresh(0.25));
+        assert_eq!(law.threshold(-1.0, 0.02), (Regime::Open, 0.0));
+        assert_eq!(law.threshold(1e-3, 0.02), (Regime::Coulomb, 0.5 * 1e-3));
+        assert_eq!(law.threshold(1.0, 0.02), (Regime::Orowan, 0.1 * 0.02));
+    }
+}

@@ -4,12 +4,20 @@
 //! constrained slots get an identity row/column. The sparsity pattern therefore never
 //! changes during a solve, so the symbolic factorisations (fill-reducing ordering,
 //! elimination structure) are computed once and reused for every numeric
-//! factorisation. The frictionless tangent is symmetric: it is factored by supernodal
-//! Cholesky; when Cholesky fails (the reduced Hessian need not be positive definite
-//! away from equilibrium) by `L D Lᵀ` without pivoting, accepted if its solution's
-//! residual is small, else by the symmetric-indefinite `L B Lᵀ` factorisation, all on
-//! the same symbolic structure and work memory; LU is the last resort. LU also serves
-//! the non-symmetric frictional tangent.
+//! factorisation.
+//!
+//! # Solve chain
+//! The frictionless tangent is symmetric ([`SparseSystem::solve_symmetric_multi`]):
+//! 1. supernodal Cholesky `L Lᵀ`;
+//! 2. when Cholesky fails (the reduced Hessian need not be positive definite away from
+//!    equilibrium), `L D Lᵀ` without pivoting, accepted if its solution's residual is
+//!    small;
+//! 3. else the symmetric-indefinite `L B Lᵀ` (Bunch–Kaufman pivoting inside the
+//!    supernodes);
+//! 4. LU with partial pivoting as the last resort.
+//!
+//! Steps 1–3 share one symbolic structure and work memory. The non-symmetric frictional
+//! tangent goes to LU directly ([`SparseSystem::lu_solve_multi`]).
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::cholesky::{
@@ -251,7 +259,7 @@ impl SparseSystem {
     }
 
     /// Solve `A xⱼ = bⱼ` in place for several right-hand sides of a symmetric matrix
-    /// (one factorisation; Cholesky, falling back to `L D Lᵀ`, `L B Lᵀ`, then LU).
+    /// (one factorisation, by the solve chain of the [module documentation](self)).
     pub fn solve_symmetric_multi(&mut self, rhs: &mut [Vec<f64>]) -> Result<(), LinSolveError> {
         if self.llt_solve(rhs)? || self.ldlt_solve(rhs)? || self.lblt_solve(rhs)? {
             return Ok(());

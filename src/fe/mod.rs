@@ -3,8 +3,9 @@
 //! # Problem (plane strain, units of the wavelength λ)
 //! Half a wavelength of a layer, `X ∈ [0, ½]`, `Y ∈ [0, h]`, is bonded on `Y = h` to a
 //! rigid slab that moves down by `d`; `u_x = 0` on `X = 0` and `X = ½` (symmetry). The
-//! face `Y = 0` is pressed onto the rigid indenter `y_s(x) = −Δ(1 − cos 2πx)`
-//! (adhesionless, frictionless), whose peak touches the undeformed layer. The mean
+//! face `Y = 0` is pressed onto the rigid indenter `y_s(x) = −Δ(1 − cos 2πx)`, whose peak
+//! touches the undeformed layer. The interface is adhesionless, and frictionless or with
+//! regularised Coulomb–Orowan friction `τ_sl = min(μ p, τ_max)` ([`Interface`]). The mean
 //! pressure is `p̄ = F/(λ/2)`, reported as `p̄/E*` with the plane-strain modulus
 //! `E* = E/(1 − ν²)`. The contact half-width `a` is the current `x` of the contact
 //! edge.
@@ -13,14 +14,17 @@
 //! * [`mesh`]: structured Q1 mesh graded toward the contact face and the peak;
 //! * [`material`], [`element`]: compressible neo-Hookean, mean-dilatation Q1/P0 energy
 //!   (locking-free for `κ/G` from 10 to 10⁴);
-//! * [`contact`]: exact contact by nonlinear elimination on the analytic surface in the
-//!   current configuration, active-set updates;
+//! * [`contact`]: the indenter and exact normal contact by nonlinear elimination on the
+//!   analytic surface in the current configuration, active-set updates;
+//! * [`friction`]: the Coulomb–Orowan law, its return mapping and tangent rows;
 //! * [`model`]: boundary conditions and assembly of the reduced residual/tangent;
-//! * [`solver`]: Newton with line search, displacement-controlled stepping from one
-//!   contact-edge event to the next (the load at which the next contact-face node
-//!   touches, found by a bordered Newton solve with `d` as unknown, secant fallback),
-//!   step cutting, contact-edge location; [`linsys`]: sparse Cholesky (`L B Lᵀ`; LU for
-//!   the non-symmetric frictional tangent) through faer;
+//! * [`solver`]: Newton with line search, the active-set loop, displacement-controlled
+//!   stepping from one contact-edge event to the next;
+//! * [`edge`]: the edge events (the load at which the next contact-face node touches,
+//!   bordered Newton solve with `d` as unknown, secant fallback) and the contact-edge
+//!   location;
+//! * [`linsys`]: the sparse direct solves through faer (the fallback chain of the
+//!   factorisations is described there);
 //! * [`shear_test`]: a block pressed onto a flat and sheared, verifying the friction law;
 //! * [`convergence`]: interpolation of curves at fixed `a/λ` and the mesh-convergence
 //!   (Richardson) table.

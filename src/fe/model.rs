@@ -586,8 +586,9 @@ impl Model {
         )
     }
 
-    /// Commit the friction history of a converged load step ([`FrictionLaw::commit`]) on
-    /// every contact-face node. No-op without friction.
+    /// Commit the friction history of a converged load step on every contact-face node:
+    /// `e_{n+1} = e_c φ`, `S_{n+1} = S(x)` on active nodes, reset on free ones (see
+    /// [`super::friction`]). No-op without friction.
     pub fn commit_slip(&self, st: &mut State) {
         let Some(law) = self.friction else { return };
         for (k, &n) in self.mesh.bottom.iter().enumerate() {
@@ -632,12 +633,12 @@ impl Model {
         [(gy - s * gx) / w, (gx + s * gy) / w]
     }
 
-    /// Normal contact force `N` of every contact-face node ([`Self::contact_forces`]).
+    /// Normal contact force `N` of every contact-face node (`Self::contact_forces`).
     pub fn normal_forces(&self, st: &State, grad: &[f64]) -> Vec<f64> {
         self.contact_forces(st, grad).iter().map(|f| f[0]).collect()
     }
 
-    /// Tangential contact force `T` of every contact-face node ([`Self::contact_forces`]).
+    /// Tangential contact force `T` of every contact-face node (`Self::contact_forces`).
     pub fn tangential_forces(&self, st: &State, grad: &[f64]) -> Vec<f64> {
         self.contact_forces(st, grad).iter().map(|f| f[1]).collect()
     }

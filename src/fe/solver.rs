@@ -2,20 +2,19 @@
 //! from one contact-edge event to the next.
 //!
 //! * Newton: consistent tangent of the reduced problem, solved by [`super::linsys`]
-//!   (symmetric fallback chain without friction, LU with friction: see there; symbolic
-//!   factorisations reused), one backtracking [`line_search`] on the energy `Π`
-//!   (Armijo) or, if the Newton direction is not a descent direction, on the residual
-//!   norm. Inverted trial configurations (`J ≤ 0`) are backtracked. Convergence:
-//!   `‖r‖∞ ≤ rtol · f_e + atol`, `f_e` the largest element-level nodal force (the
-//!   round-off scale of the assembled residual) and `atol = residual_atol · (G + κ) λ`;
-//!   an iteration whose correction is below `increment_atol` (round-off of the
-//!   positions) also ends the iteration.
-//! * Active set: after each converged Newton solve, release nodes with `λ < 0`,
-//!   activate penetrating nodes (moved to their closest point on the indenter),
-//!   repeat (see [`super::contact`]). Passes whose active set may still change are
-//!   converged loosely, the confirming pass tightly.
+//!   (the factorisations are described there), one backtracking `line_search` on the
+//!   energy `Π` (Armijo) or, if the Newton direction is not a descent direction or the
+//!   problem has friction, on the residual norm. Inverted trial configurations
+//!   (`J ≤ 0`) are backtracked. Convergence: `‖r‖∞ ≤ rtol · f_e + atol`, `f_e` the
+//!   largest element-level nodal force (the round-off scale of the assembled residual)
+//!   and `atol = residual_atol · (G + κ) λ`; an iteration whose correction is below
+//!   `increment_atol` (round-off of the positions) also ends the iteration.
+//! * Active set: after each converged Newton solve, release nodes with `λ < 0` (with
+//!   friction: normal force `N < 0`), activate penetrating nodes (moved to their closest
+//!   point on the indenter), repeat (see [`super::contact`]). Passes whose active set
+//!   may still change are converged loosely, the confirming pass tightly.
 //! * Load stepping in the slab displacement `d`, from one edge event to the next
-//!   ([`trace`]; the event search is in [`super::edge`]). Predictor: tangent (Euler) step
+//!   (`trace`; the event search is in [`super::edge`]). Predictor: tangent (Euler) step
 //!   from the last converged state, to the load at which the target node closes along
 //!   that tangent (scaled by the previous event's ratio of actual to extrapolated
 //!   increment). Nodes left touching with a vanishing force at the last event enter the
