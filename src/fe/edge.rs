@@ -586,7 +586,9 @@ impl Bracket {
     }
 }
 
-/// Contact half-width at an edge event on node `k` (rule documented at [`EdgeRule`]).
+/// Contact half-width at an edge event on node `k` (rule documented at [`EdgeRule`]; the
+/// gap fits fall back to the midpoint of `[x_{k−1}, x_k]` unless the gaps of nodes
+/// `k + 1`, `k + 2` are positive and increasing).
 pub(crate) fn edge_position(model: &Model, st: &State, k: usize, rule: EdgeRule) -> f64 {
     let b = &model.mesh.bottom;
     let x = |i: usize| st.x[b[i]][0];

@@ -718,6 +718,7 @@ impl Model {
             }
         }
         if x.is_finite() {
+            // the half period X ∈ [0, ½] of the mesh
             st.x[n][0] = x.clamp(0.0, 0.5);
         }
     }
