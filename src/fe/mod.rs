@@ -3,8 +3,9 @@
 //! # Problem (plane strain, units of the wavelength λ)
 //! Half a wavelength of a layer, `X ∈ [0, ½]`, `Y ∈ [0, h]`, is bonded on `Y = h` to a
 //! rigid slab that moves down by `d`; `u_x = 0` on `X = 0` and `X = ½` (symmetry). The
-//! face `Y = 0` is pressed onto the rigid indenter `y_s(x) = −Δ(1 − cos 2πx)`
-//! (adhesionless, frictionless), whose peak touches the undeformed layer. The mean
+//! face `Y = 0` is pressed onto the rigid indenter `y_s(x) = −Δ(1 − cos 2πx)`, whose peak
+//! touches the undeformed layer. The interface is adhesionless, and frictionless or with
+//! regularised Coulomb–Orowan friction `τ_sl = min(μ p, τ_max)` ([`Interface`]). The mean
 //! pressure is `p̄ = F/(λ/2)`, reported as `p̄/E*` with the plane-strain modulus
 //! `E* = E/(1 − ν²)`. The contact half-width `a` is the current `x` of the contact
 //! edge.
@@ -13,14 +14,17 @@
 //! * [`mesh`]: structured Q1 mesh graded toward the contact face and the peak;
 //! * [`material`], [`element`]: compressible neo-Hookean, mean-dilatation Q1/P0 energy
 //!   (locking-free for `κ/G` from 10 to 10⁴);
-//! * [`contact`]: exact contact by nonlinear elimination on the analytic surface in the
-//!   current configuration, active-set updates;
+//! * [`contact`]: the indenter and exact normal contact by nonlinear elimination on the
+//!   analytic surface in the current configuration, active-set updates;
+//! * [`friction`]: the Coulomb–Orowan law, its return mapping and tangent rows;
 //! * [`model`]: boundary conditions and assembly of the reduced residual/tangent;
-//! * [`solver`]: Newton with line search, displacement-controlled stepping from one
-//!   contact-edge event to the next (the load at which the next contact-face node
-//!   touches, found by a bordered Newton solve with `d` as unknown, secant fallback),
-//!   step cutting, contact-edge location; [`linsys`]: sparse Cholesky (`L B Lᵀ`; LU for
-//!   the non-symmetric frictional tangent) through faer;
+//! * [`solver`]: Newton with line search, the active-set loop, displacement-controlled
+//!   stepping from one contact-edge event to the next;
+//! * [`edge`]: the edge events (the load at which the next contact-face node touches,
+//!   bordered Newton solve with `d` as unknown, secant fallback) and the contact-edge
+//!   location;
+//! * [`linsys`]: the sparse direct solves through faer (the fallback chain of the
+//!   factorisations is described there);
 //! * [`shear_test`]: a block pressed onto a flat and sheared, verifying the friction law;
 //! * [`convergence`]: interpolation of curves at fixed `a/λ` and the mesh-convergence
 //!   (Richardson) table.
@@ -33,8 +37,10 @@
 pub mod contact;
 pub mod convergence;
 pub mod curve;
+pub mod edge;
 pub mod element;
 pub mod error;
+pub mod friction;
 pub mod linsys;
 pub mod material;
 pub mod mesh;
@@ -42,13 +48,14 @@ pub mod model;
 pub mod shear_test;
 pub mod solver;
 
-pub use contact::{CoulombOrowan, Interface};
 pub use convergence::{
     convergence_table, mesh_convergence, mesh_convergence_levels, p_at, ConvergenceRow,
     ConvergenceTable,
 };
 pub use curve::{Curve, CurvePoint, CurvePointParseError, DeformedState};
+pub use edge::{EdgeRule, DISCRETE_EDGE_FRACTION};
 pub use error::{CurveFailure, SolveError};
+pub use friction::{CoulombOrowan, Interface};
 pub use material::estar_over_g;
 pub use mesh::{Grading, MeshLevel, MeshLevelParseError};
 
@@ -108,46 +115,6 @@ pub struct LayerProblem {
     pub kinematics: Kinematics,
     /// Interface law.
     pub interface: Interface,
-}
-
-/// Rule placing the contact edge `a` inside `[x_{k−1}, x_k]` (current positions) at an
-/// edge event on node `k`: node `k` touches with zero force, node `k − 1` carries force
-/// (see `solver::trace`).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub enum EdgeRule {
-    /// `a = x_{k−1} + φ (x_k − x_{k−1})` with a fixed fraction `φ`. Near the edge the
-    /// discrete solution is self-similar at the scale of the element (the far field is
-    /// the `√(a − x)` pressure / `(x − a)^{3/2}` gap of the continuum, the mesh is locally
-    /// uniform), so the edge of the continuum solution sits at a mesh-independent
-    /// fraction `φ` of the last loaded element; any rule that uses nodal values at a
-    /// distance `O(h)` from the edge errs by `O(h)` unless it reproduces that fraction.
-    /// Default [`DISCRETE_EDGE_FRACTION`].
-    Fraction(f64),
-    /// Fit of the periodic Westergaard gap shape `g ∝ G(x; a)` through the vertical gaps
-    /// of nodes `k + 1`, `k + 2` (exact in the linear limit, `(x − a)^{3/2}` near the
-    /// edge). Measured: as good as [`EdgeRule::Fraction`] at AR = 0.1, but at AR = 0.3
-    /// the finite-strain gap is not of that shape and the rule errs by ≈ 0.2 `h`.
-    PeriodicGap,
-    /// Fit of `g ∝ (x − a)^{3/2}` through the vertical gaps of nodes `k + 1`, `k + 2`.
-    GapPower,
-}
-
-/// The discrete edge fraction `φ` of [`EdgeRule::Fraction`] for the Q1/P0 element with
-/// the default [`Grading`], calibrated on the exact solution: with linear kinematics,
-/// AR = 0.01, κ/G = 1000, the `a` that Westergaard's `p̄/E* = π (Δ/λ) sin²(π a/λ)` gives
-/// for the computed `p̄` lies at `φ = 0.633 … 0.655` of `[x_{k−1}, x_k]` over
-/// a/λ ∈ [0.1, 0.35] on the 32×16, 64×32 and 128×64 meshes (medians 0.639, 0.638,
-/// 0.644; `PHI_CALIB=1 cargo run --release --example fe_study`). With `peak_ratio = 2`
-/// the same measurement gives 0.643 … 0.668 (medians 0.645–0.647): `φ` depends only
-/// weakly on the shape of the surface elements. Check, finite kinematics: the
-/// Richardson-extrapolated edge of the AR = 0.1 and AR = 0.3 curves sits at
-/// `φ = 0.60 … 0.67`.
-pub const DISCRETE_EDGE_FRACTION: f64 = 0.64;
-
-impl Default for EdgeRule {
-    fn default() -> Self {
-        EdgeRule::Fraction(DISCRETE_EDGE_FRACTION)
-    }
 }
 
 /// Numerical options.

@@ -21,83 +21,31 @@
 //! the corresponding force control, and displacement control avoids the limit-point
 //! and rigid-body issues of force control.
 
-use super::contact::{Indenter, Interface};
+use super::contact::Indenter;
 use super::element::{self, QuadRef};
+use super::friction::{FrictionEval, FrictionLaw, Interface, Regime, SlipHistory};
 use super::linsys::SparseSystem;
 use super::material::NeoHooke;
 use super::mesh::Mesh;
 use super::Kinematics;
 
+/// Iteration cap of the closest-point projection ([`Model::project_closest`]). Newton on
+/// the closest-point equation converges quadratically from a node within an element of
+/// the surface; the cap is a safeguard.
+const PROJECTION_MAX_ITERATIONS: usize = 20;
+
+/// The closest-point projection stops once its correction is below this (units of λ):
+/// about ten ulps of a position `x ≤ ½` (one ulp is 1.1·10⁻¹⁶), i.e. at round-off.
+const PROJECTION_STEP_TOL: f64 = 1e-15;
+
 /// Boundary condition of the lateral faces `X = 0` and `X = ½`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Lateral {
-    /// `x = X`: symmetry planes of the periodic wavy problem (REPLICATION.md R1).
+    /// `x = X`: symmetry planes of the periodic wavy problem (docs/replication.md R1).
     #[default]
     Symmetric,
     /// Traction-free: a finite block.
     Free,
-}
-
-/// Committed friction history of one contact-face node (see [`super::contact`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct SlipHistory {
-    /// Elastic slip `e_n` at the last converged step (units of λ, `|e_n| ≤ e_c`).
-    pub elastic: f64,
-    /// Current `x` at the last converged step; the step's slip is the arc length from
-    /// here.
-    pub anchor_x: f64,
-}
-
-impl SlipHistory {
-    /// No elastic slip, anchored at `x`: a node that is free or has just touched.
-    fn fresh(x: f64) -> Self {
-        Self {
-            elastic: 0.0,
-            anchor_x: x,
-        }
-    }
-}
-
-/// Friction law in solver units (`G = 1`, lengths in λ).
-#[derive(Clone, Copy, Debug)]
-struct FrictionLaw {
-    mu: f64,
-    /// `τ_max/G`.
-    tau_max: f64,
-    /// Elastic slip `e_c` at which the threshold is reached (units of λ).
-    slip_c: f64,
-}
-
-/// Friction regime of one active node.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Regime {
-    /// `N ≤ 0`: no threshold (the node is about to be released).
-    Open,
-    /// `L = μ N`.
-    Coulomb,
-    /// `L = τ_max ℓ`.
-    Orowan,
-}
-
-/// Friction force of one active node and what its derivatives need.
-#[derive(Clone, Copy, Debug)]
-struct FrictionEval {
-    /// `y_s'`, `y_s''` at the node, `w = √(1 + y_s'²)`.
-    s: f64,
-    c: f64,
-    w: f64,
-    /// `φ` and `dφ/dx`.
-    phi: f64,
-    dphi_dx: f64,
-    regime: Regime,
-    /// Tributary length `ℓ` and `∂ℓ/∂P` of the node and its two neighbours (zero where
-    /// absent).
-    ell: f64,
-    dell: [[f64; 2]; 3],
-    /// Threshold `L`.
-    limit: f64,
-    /// Residual contribution `w L φ`.
-    force: f64,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -185,11 +133,7 @@ impl Model {
             Interface::CoulombOrowan(f) => {
                 let width = mesh.nodes[*mesh.bottom.last().expect("contact face")][0]
                     - mesh.nodes[mesh.bottom[0]][0];
-                Some(FrictionLaw {
-                    mu: f.friction_coefficient,
-                    tau_max: f.tau_max_over_estar * super::estar_over_g(mat.kappa / mat.g) * mat.g,
-                    slip_c: f.elastic_slip_over_element * width / mesh.nx as f64,
-                })
+                Some(FrictionLaw::in_solver_units(&f, &mat, width, mesh.nx))
             }
         };
         let refs: Vec<QuadRef> = mesh
@@ -425,7 +369,7 @@ impl Model {
         let mut dresid_dd = vec![0.0; if with_matrix { 2 * nn } else { 0 }];
         // Friction: active sliding nodes (contact-face index per node) and, per such node,
         // the rows (−y_s', 1)ᵀ H[node, ·] mapped to slots (value position, value) and their
-        // derivative with respect to d (the Coulomb regime needs them, see `contact`).
+        // derivative with respect to d (the Coulomb regime needs them, see `friction`).
         let fric_of: Vec<Option<usize>> = match self.friction {
             Some(_) if with_matrix => {
                 let mut f = vec![None; nn];
@@ -553,41 +497,33 @@ impl Model {
                 if !with_matrix {
                     continue;
                 }
+                // the friction row of the tangent (formulas in `friction`)
                 let diag = self.sys.diag_pos[2 * n];
-                let (gx, gy) = (grad[2 * n], grad[2 * n + 1]);
                 match f.regime {
                     Regime::Open => {}
                     Regime::Coulomb => {
-                        // w L φ = μ φ (−s g_x + g_y)
-                        let coef = law.mu * f.phi;
+                        let coef = f.coulomb_row_factor(&law);
                         for &(p, v) in &fric_rows[k] {
                             self.sys.values[p] += coef * v;
                         }
                         self.sys.values[diag] +=
-                            law.mu * f.dphi_dx * (gy - f.s * gx) - coef * f.c * gx;
+                            f.coulomb_own(&law, [grad[2 * n], grad[2 * n + 1]]);
                         dresid_dd[2 * n] += coef * fric_dd[k];
                     }
                     Regime::Orowan => {
-                        // w L φ = w τ ℓ φ
                         let cn = map[n][0].expect("sliding slot");
-                        let own = f.dell[1][0] * cn[0] + f.dell[1][1] * cn[1];
-                        self.sys.values[diag] += law.tau_max
-                            * (f.s * f.c / f.w * f.ell * f.phi
-                                + f.w * f.phi * own
-                                + f.w * f.ell * f.dphi_dx);
-                        for (j, m) in [k.wrapping_sub(1), k + 1].into_iter().enumerate() {
+                        self.sys.values[diag] += f.orowan_own(&law, cn);
+                        for (side, m) in [k.wrapping_sub(1), k + 1].into_iter().enumerate() {
                             let Some(&nm) = self.mesh.bottom.get(m) else {
                                 continue;
                             };
-                            let dl = f.dell[2 * j];
                             for t in 0..2 {
                                 let Some(cm) = map[nm][t] else { continue };
                                 let p = self
                                     .sys
                                     .position(2 * n, 2 * nm + t)
                                     .expect("neighbours share an element");
-                                self.sys.values[p] +=
-                                    f.w * law.tau_max * f.phi * (dl[0] * cm[0] + dl[1] * cm[1]);
+                                self.sys.values[p] += f.orowan_neighbour(&law, side, cm);
                             }
                         }
                     }
@@ -622,79 +558,42 @@ impl Model {
         }
     }
 
-    /// Trial elastic slip `e* = e_n + S(x) − S_n` of active contact-face node `k`.
+    /// Trial elastic slip `e*` of active contact-face node `k`
+    /// ([`SlipHistory::trial_elastic_slip`]).
     fn trial_elastic_slip(&self, st: &State, k: usize) -> f64 {
         let n = self.mesh.bottom[k];
         let h = st.slip[k];
-        h.elastic + self.contact_arc(h.anchor_x, st.x[n][0])
+        h.trial_elastic_slip(self.contact_arc(h.anchor_x, st.x[n][0]))
     }
 
-    /// Friction force of active contact-face node `k` (return mapping from the committed
-    /// history, see [`super::contact`]).
+    /// Friction force of active contact-face node `k` ([`FrictionLaw::eval`]).
     fn friction_eval(&self, st: &State, k: usize, grad: &[f64], law: &FrictionLaw) -> FrictionEval {
         let b = &self.mesh.bottom;
         let n = b[k];
-        let s = self.contact_slope(st, n);
-        let c = match self.kin {
+        let curvature = match self.kin {
             Kinematics::Finite => self.indenter.curvature(st.x[n][0]),
             Kinematics::Linear => 0.0,
         };
-        let w = (1.0 + s * s).sqrt();
-        let e = self.trial_elastic_slip(st, k);
-        let (phi, dphi_dx) = if e.abs() <= law.slip_c {
-            (e / law.slip_c, w / law.slip_c)
-        } else {
-            (e.signum(), 0.0)
-        };
-        // tributary length: half of each adjacent chord of the deformed face
-        let mut ell = 0.0;
-        let mut dell = [[0.0; 2]; 3];
-        for (j, m) in [k.wrapping_sub(1), k + 1].into_iter().enumerate() {
-            let Some(&nm) = b.get(m) else { continue };
-            let d = [st.x[nm][0] - st.x[n][0], st.x[nm][1] - st.x[n][1]];
-            let len = d[0].hypot(d[1]);
-            ell += 0.5 * len;
-            let u = [0.5 * d[0] / len, 0.5 * d[1] / len];
-            dell[2 * j] = u;
-            dell[1] = [dell[1][0] - u[0], dell[1][1] - u[1]];
-        }
+        let neighbours = [k.wrapping_sub(1), k + 1].map(|m| b.get(m).map(|&nm| st.x[nm]));
         let [normal, _] = self.node_contact_force(st, grad, n);
-        let (regime, limit) = if normal <= 0.0 {
-            (Regime::Open, 0.0)
-        } else if law.mu * normal <= law.tau_max * ell {
-            (Regime::Coulomb, law.mu * normal)
-        } else {
-            (Regime::Orowan, law.tau_max * ell)
-        };
-        FrictionEval {
-            s,
-            c,
-            w,
-            phi,
-            dphi_dx,
-            regime,
-            ell,
-            dell,
-            limit,
-            force: w * limit * phi,
-        }
+        law.eval(
+            self.contact_slope(st, n),
+            curvature,
+            self.trial_elastic_slip(st, k),
+            st.x[n],
+            neighbours,
+            normal,
+        )
     }
 
-    /// Commit the friction history of a converged load step: `e_{n+1} = e_c φ`,
-    /// `S_{n+1} = S(x)` on active nodes; reset on free ones. No-op without friction.
+    /// Commit the friction history of a converged load step on every contact-face node:
+    /// `e_{n+1} = e_c φ`, `S_{n+1} = S(x)` on active nodes, reset on free ones (see
+    /// [`super::friction`]). No-op without friction.
     pub fn commit_slip(&self, st: &mut State) {
         let Some(law) = self.friction else { return };
         for (k, &n) in self.mesh.bottom.iter().enumerate() {
-            let elastic = if st.active[k] {
-                self.trial_elastic_slip(st, k)
-                    .clamp(-law.slip_c, law.slip_c)
-            } else {
-                0.0
-            };
-            st.slip[k] = SlipHistory {
-                elastic,
-                ..SlipHistory::fresh(st.x[n][0])
-            };
+            let trial = st.active[k].then(|| self.trial_elastic_slip(st, k));
+            st.slip[k] = law.commit(trial, st.x[n][0]);
         }
     }
 
@@ -734,12 +633,12 @@ impl Model {
         [(gy - s * gx) / w, (gx + s * gy) / w]
     }
 
-    /// Normal contact force `N` of every contact-face node ([`Self::contact_forces`]).
+    /// Normal contact force `N` of every contact-face node (`Self::contact_forces`).
     pub fn normal_forces(&self, st: &State, grad: &[f64]) -> Vec<f64> {
         self.contact_forces(st, grad).iter().map(|f| f[0]).collect()
     }
 
-    /// Tangential contact force `T` of every contact-face node ([`Self::contact_forces`]).
+    /// Tangential contact force `T` of every contact-face node (`Self::contact_forces`).
     pub fn tangential_forces(&self, st: &State, grad: &[f64]) -> Vec<f64> {
         self.contact_forces(st, grad).iter().map(|f| f[1]).collect()
     }
@@ -801,7 +700,7 @@ impl Model {
         }
         let [x0, y0] = st.x[n];
         let mut x = x0;
-        for _ in 0..20 {
+        for _ in 0..PROJECTION_MAX_ITERATIONS {
             let (ys, s, c) = (
                 self.indenter.y(x),
                 self.indenter.slope(x),
@@ -814,11 +713,12 @@ impl Model {
             }
             let dx = f / df;
             x -= dx;
-            if dx.abs() < 1e-15 {
+            if dx.abs() < PROJECTION_STEP_TOL {
                 break;
             }
         }
         if x.is_finite() {
+            // the half period X ∈ [0, ½] of the mesh
             st.x[n][0] = x.clamp(0.0, 0.5);
         }
     }

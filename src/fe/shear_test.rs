@@ -15,7 +15,8 @@
 //! checks that. The same model, solver and friction code as the wavy problem are used:
 //! only the indenter (amplitude 0) and the lateral faces ([`Lateral::Free`]) differ.
 
-use super::contact::{CoulombOrowan, Indenter, Interface};
+use super::contact::Indenter;
+use super::friction::{CoulombOrowan, Interface};
 use super::material::{estar_over_g, NeoHooke};
 use super::mesh::{Grading, Mesh};
 use super::model::{Lateral, Model};

@@ -1,0 +1,371 @@
+//! Interface law: regularised Coulomb–Orowan friction (docs/replication.md R3).
+//!
+//! # The law
+//! With [`Interface::CoulombOrowan`] the indenter also exerts a tangential force `T` on
+//! each active node, along the surface tangent `t = (1, y_s')/w`, `w = √(1 + y_s'²)`. The
+//! normal force is `N = n·g = (g_y − y_s' g_x)/w` (`g = ∂Π/∂x` the node's internal force,
+//! `n = (−y_s', 1)/w`), and the nodal slip threshold is the traction bound
+//! `τ_sl = min(μ p, τ_max)` integrated over the node's tributary length `ℓ` on the deformed
+//! face (half of each adjacent face segment, chords):
+//!
+//! ```text
+//! L = min(μ N, τ_max ℓ)
+//! ```
+//!
+//! Stick is regularised as in penalty friction: the tangential force grows with the
+//! *elastic slip* `e` and reaches the threshold at `e_c` (a small fraction of the element
+//! size, [`CoulombOrowan::elastic_slip_over_element`]). Return mapping, per load step,
+//! from the committed history `(e_n, S_n)` (elastic slip and arc-length position on the
+//! indenter at the last converged step, [`SlipHistory`]):
+//!
+//! ```text
+//! e* = e_n + S(x) − S_n            (trial elastic slip; S the arc length along y_s)
+//! φ  = e*/e_c  if |e*| ≤ e_c (stick),   sign(e*) otherwise (slip)
+//! T  = −L φ                        (opposes the slip)
+//! ```
+//!
+//! and on convergence `e_{n+1} = e_c φ`, `S_{n+1} = S(x)`.
+//!
+//! # Residual and tangent rows
+//! The reduced residual of an active node's sliding unknown `x` (slot vector
+//! `c = (1, y_s')`, see [`super::contact`]) becomes
+//!
+//! ```text
+//! r_x = c·g + w L φ
+//! ```
+//!
+//! (zero: the tangential internal force balances the friction force). Its derivatives,
+//! with `dS/dx = w`, `dw/dx = y_s' y_s''/w`, `dφ/dx = w/e_c` in stick and 0 in slip:
+//!
+//! * Coulomb regime, `w L φ = μ φ (−y_s', 1)·g`: a modified left vector on the element
+//!   Hessian rows of the node,
+//!   `∂(w L φ)/∂q_t = μ φ (−y_s', 1) H[node, ·] c_t`, plus on the node's own unknown
+//!   `μ (dφ/dx) (g_y − y_s' g_x) − μ φ y_s'' g_x`;
+//! * Orowan regime, `w L φ = w τ_max ℓ φ`: it depends on the neighbours' positions `P_m`
+//!   through `ℓ`,
+//!   `∂(w L φ)/∂q_m = w τ_max φ (∂ℓ/∂P_m)·c_m` on a neighbour's slot, and on the own
+//!   unknown `τ_max (y_s' y_s''/w ℓ φ + w φ (∂ℓ/∂P)·c + w ℓ dφ/dx)`.
+//!
+//! The tangent is not symmetric: it is solved by LU (see [`super::linsys`]). With
+//! [`Interface::Frictionless`] none of this is built. For linear kinematics the same law
+//! acts on `u_x` at the reference position (`y_s' = 0`, `S = x`).
+
+use super::material::{estar_over_g, NeoHooke};
+
+/// Interface law between the layer and the indenter.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub enum Interface {
+    /// Adhesionless, frictionless.
+    #[default]
+    Frictionless,
+    /// Adhesionless, regularised Coulomb–Orowan friction.
+    CoulombOrowan(CoulombOrowan),
+}
+
+impl Interface {
+    /// The interface for friction coefficient `μ` and shear strength `τ_max/E*`:
+    /// frictionless when either is zero (`τ_sl = min(μ p, τ_max) ≡ 0`), so that no
+    /// friction machinery is built for a frictionless scene.
+    pub fn coulomb_orowan(
+        friction_coefficient: f64,
+        tau_max_over_estar: f64,
+        elastic_slip_over_element: f64,
+    ) -> Self {
+        if friction_coefficient == 0.0 || tau_max_over_estar == 0.0 {
+            Interface::Frictionless
+        } else {
+            Interface::CoulombOrowan(CoulombOrowan {
+                friction_coefficient,
+                tau_max_over_estar,
+                elastic_slip_over_element,
+            })
+        }
+    }
+}
+
+/// Regularised Coulomb–Orowan friction, `τ_sl = min(μ p, τ_max)` (docs/replication.md R3).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct CoulombOrowan {
+    /// Friction coefficient `μ` (> 0).
+    pub friction_coefficient: f64,
+    /// Interfacial shear strength over the plane-strain modulus, `τ_max/E*` (> 0).
+    pub tau_max_over_estar: f64,
+    /// Elastic slip at which the full threshold is mobilised, over the mean element length
+    /// along the contact face (> 0). Abaqus's penalty friction uses 0.005 by default.
+    pub elastic_slip_over_element: f64,
+}
+
+/// Committed friction history of one contact-face node.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SlipHistory {
+    /// Elastic slip `e_n` at the last converged step (units of λ, `|e_n| ≤ e_c`).
+    pub elastic: f64,
+    /// Current `x` at the last converged step; the step's slip is the arc length from
+    /// here.
+    pub anchor_x: f64,
+}
+
+impl SlipHistory {
+    /// No elastic slip, anchored at `x`: a node that is free or has just touched.
+    pub(super) fn fresh(x: f64) -> Self {
+        Self {
+            elastic: 0.0,
+            anchor_x: x,
+        }
+    }
+
+    /// Trial elastic slip `e* = e_n + S(x) − S_n`, given the arc length
+    /// `S(x) − S_n` travelled along the indenter from the anchor.
+    pub(super) fn trial_elastic_slip(&self, arc_from_anchor: f64) -> f64 {
+        self.elastic + arc_from_anchor
+    }
+}
+
+/// Friction law in solver units (`G = 1`, lengths in λ).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct FrictionLaw {
+    /// Friction coefficient `μ`.
+    pub mu: f64,
+    /// `τ_max/G`.
+    pub tau_max: f64,
+    /// Elastic slip `e_c` at which the threshold is reached (units of λ).
+    pub slip_c: f64,
+}
+
+/// Friction regime of one active node.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Regime {
+    /// `N ≤ 0`: no threshold (the node is about to be released).
+    Open,
+    /// `L = μ N`.
+    Coulomb,
+    /// `L = τ_max ℓ`.
+    Orowan,
+}
+
+/// Friction force of one active node and what its derivatives need.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct FrictionEval {
+    /// `y_s'`, `y_s''` at the node, `w = √(1 + y_s'²)`.
+    s: f64,
+    c: f64,
+    w: f64,
+    /// `φ` and `dφ/dx`.
+    phi: f64,
+    dphi_dx: f64,
+    /// Which bound is the threshold.
+    pub regime: Regime,
+    /// Tributary length `ℓ` and `∂ℓ/∂P` of the node and its two neighbours (zero where
+    /// absent): `[previous, node, next]`.
+    ell: f64,
+    dell: [[f64; 2]; 3],
+    /// Threshold `L` (units `G λ`).
+    pub limit: f64,
+    /// Residual contribution `w L φ`.
+    pub force: f64,
+}
+
+impl FrictionLaw {
+    /// The law of `interface` in solver units: `τ_max/G = (τ_max/E*) (E*/G)` with the
+    /// material's `E*/G`, and `e_c` the given fraction of the mean element length
+    /// `face_width / face_elements` along the contact face.
+    pub(super) fn in_solver_units(
+        interface: &CoulombOrowan,
+        mat: &NeoHooke,
+        face_width: f64,
+        face_elements: usize,
+    ) -> Self {
+        Self {
+            mu: interface.friction_coefficient,
+            tau_max: interface.tau_max_over_estar * estar_over_g(mat.kappa / mat.g) * mat.g,
+            slip_c: interface.elastic_slip_over_element * face_width / face_elements as f64,
+        }
+    }
+
+    /// Friction force of one active node (return mapping from its committed history).
+    ///
+    /// `slope`, `curvature`: `y_s'`, `y_s''` under the node; `trial_slip`: `e*`
+    /// ([`SlipHistory::trial_elastic_slip`]); `node`, `neighbours`: current positions of
+    /// the node and of its previous and next contact-face neighbours (if any); `normal`:
+    /// the normal force `N`.
+    pub(super) fn eval(
+        &self,
+        slope: f64,
+        curvature: f64,
+        trial_slip: f64,
+        node: [f64; 2],
+        neighbours: [Option<[f64; 2]>; 2],
+        normal: f64,
+    ) -> FrictionEval {
+        let w = (1.0 + slope * slope).sqrt();
+        let (phi, dphi_dx) = self.mobilisation(trial_slip, w);
+        let (ell, dell) = tributary_length(node, neighbours);
+        let (regime, limit) = self.threshold(normal, ell);
+        FrictionEval {
+            s: slope,
+            c: curvature,
+            w,
+            phi,
+            dphi_dx,
+            regime,
+            ell,
+            dell,
+            limit,
+            force: w * limit * phi,
+        }
+    }
+
+    /// Mobilised fraction of the threshold and its derivative along the sliding unknown
+    /// (`dS/dx = w`): `φ = e*/e_c`, `dφ/dx = w/e_c` in stick, `φ = sign(e*)`, 0 in slip.
+    fn mobilisation(&self, trial_slip: f64, w: f64) -> (f64, f64) {
+        if trial_slip.abs() <= self.slip_c {
+            (trial_slip / self.slip_c, w / self.slip_c)
+        } else {
+            (trial_slip.signum(), 0.0)
+        }
+    }
+
+    /// Regime and threshold `L = min(μ N, τ_max ℓ)` (none when `N ≤ 0`).
+    fn threshold(&self, normal: f64, ell: f64) -> (Regime, f64) {
+        if normal <= 0.0 {
+            (Regime::Open, 0.0)
+        } else if self.mu * normal <= self.tau_max * ell {
+            (Regime::Coulomb, self.mu * normal)
+        } else {
+            (Regime::Orowan, self.tau_max * ell)
+        }
+    }
+
+    /// History after a converged load step: `e_{n+1} = e_c φ` (`e*` clamped to
+    /// `[−e_c, e_c]`) and `S_{n+1} = S(x)` on an active node (`trial_slip = Some(e*)`);
+    /// no elastic slip on a free one.
+    pub(super) fn commit(&self, trial_slip: Option<f64>, x: f64) -> SlipHistory {
+        let elastic = match trial_slip {
+            Some(e) => e.clamp(-self.slip_c, self.slip_c),
+            None => 0.0,
+        };
+        SlipHistory {
+            elastic,
+            ..SlipHistory::fresh(x)
+        }
+    }
+}
+
+/// Tributary length `ℓ` of a contact-face node, half of each adjacent chord of the
+/// deformed face, and `∂ℓ/∂P` of `[previous, node, next]`.
+fn tributary_length(node: [f64; 2], neighbours: [Option<[f64; 2]>; 2]) -> (f64, [[f64; 2]; 3]) {
+    let mut ell = 0.0;
+    let mut dell = [[0.0; 2]; 3];
+    for (j, m) in neighbours.into_iter().enumerate() {
+        let Some(pm) = m else { continue };
+        let d = [pm[0] - node[0], pm[1] - node[1]];
+        let len = d[0].hypot(d[1]);
+        ell += 0.5 * len;
+        let u = [0.5 * d[0] / len, 0.5 * d[1] / len];
+        dell[2 * j] = u;
+        dell[1] = [dell[1][0] - u[0], dell[1][1] - u[1]];
+    }
+    (ell, dell)
+}
+
+impl FrictionEval {
+    /// Coulomb regime: factor `μ φ` of the normal-force rows `(−y_s', 1) H[node, ·] c_t`
+    /// (and of their derivative with respect to the slab displacement).
+    pub(super) fn coulomb_row_factor(&self, law: &FrictionLaw) -> f64 {
+        law.mu * self.phi
+    }
+
+    /// Coulomb regime, own unknown: `μ (dφ/dx) (g_y − y_s' g_x) − μ φ y_s'' g_x`, `g`
+    /// the node's internal force.
+    pub(super) fn coulomb_own(&self, law: &FrictionLaw, g: [f64; 2]) -> f64 {
+        let (gx, gy) = (g[0], g[1]);
+        law.mu * self.dphi_dx * (gy - self.s * gx) - self.coulomb_row_factor(law) * self.c * gx
+    }
+
+    /// Orowan regime, own unknown with slot vector `slot`:
+    /// `τ_max (y_s' y_s''/w ℓ φ + w φ (∂ℓ/∂P)·c + w ℓ dφ/dx)`.
+    pub(super) fn orowan_own(&self, law: &FrictionLaw, slot: [f64; 2]) -> f64 {
+        let own = self.dell[1][0] * slot[0] + self.dell[1][1] * slot[1];
+        law.tau_max
+            * (self.s * self.c / self.w * self.ell * self.phi
+                + self.w * self.phi * own
+                + self.w * self.ell * self.dphi_dx)
+    }
+
+    /// Orowan regime, slot `slot` of the previous (`side = 0`) or next (`side = 1`)
+    /// contact-face neighbour: `w τ_max φ (∂ℓ/∂P_m)·c_m`.
+    pub(super) fn orowan_neighbour(&self, law: &FrictionLaw, side: usize, slot: [f64; 2]) -> f64 {
+        let dl = self.dell[2 * side];
+        self.w * law.tau_max * self.phi * (dl[0] * slot[0] + dl[1] * slot[1])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `∂ℓ/∂P` of [`tributary_length`] against central differences, for an interior node
+    /// and for either end of the face.
+    #[test]
+    fn tributary_length_derivative_matches_central_differences() {
+        let node = [0.2, -0.01];
+        let (prev, next) = ([0.17, -0.004], [0.235, -0.02]);
+        let h = 1e-7;
+        for neighbours in [
+            [Some(prev), Some(next)],
+            [None, Some(next)],
+            [Some(prev), None],
+        ] {
+            let points = [neighbours[0], Some(node), neighbours[1]];
+            let (_, dell) = tributary_length(node, neighbours);
+            for (j, p) in points.iter().enumerate() {
+                let Some(p) = *p else {
+                    assert_eq!(dell[j], [0.0; 2], "absent neighbour {j}");
+                    continue;
+                };
+                for i in 0..2 {
+                    let ell_moved = |delta: f64| {
+                        let mut moved = points;
+                        let mut q = p;
+                        q[i] += delta;
+                        moved[j] = Some(q);
+                        tributary_length(moved[1].expect("node"), [moved[0], moved[2]]).0
+                    };
+                    let fd = (ell_moved(h) - ell_moved(-h)) / (2.0 * h);
+                    assert!(
+                        (fd - dell[j][i]).abs() <= 1e-7,
+                        "∂ℓ/∂P[{j}][{i}] = {} vs finite difference {fd}",
+                        dell[j][i]
+                    );
+                }
+            }
+        }
+    }
+
+    /// Return mapping: `φ` is continuous at `|e*| = e_c` and saturates beyond, the
+    /// threshold is `min(μ N, τ_max ℓ)`, and the committed slip is `e_c φ`.
+    #[test]
+    fn return_mapping_saturates_at_the_threshold() {
+        let law = FrictionLaw {
+            mu: 0.5,
+            tau_max: 0.1,
+            slip_c: 1e-3,
+        };
+        let w = 1.2;
+        for sign in [1.0, -1.0] {
+            let (phi, dphi) = law.mobilisation(sign * law.slip_c, w);
+            assert_eq!((phi, dphi), (sign, w / law.slip_c));
+            assert_eq!(law.mobilisation(sign * 2.0 * law.slip_c, w), (sign, 0.0));
+            assert_eq!(law.mobilisation(sign * 0.5 * law.slip_c, w).0, sign * 0.5);
+            let committed = law.commit(Some(sign * 3.0 * law.slip_c), 0.25);
+            assert_eq!(
+                (committed.elastic, committed.anchor_x),
+                (sign * law.slip_c, 0.25)
+            );
+        }
+        assert_eq!(law.commit(None, 0.25), SlipHistory::fresh(0.25));
+        assert_eq!(law.threshold(-1.0, 0.02), (Regime::Open, 0.0));
+        assert_eq!(law.threshold(1e-3, 0.02), (Regime::Coulomb, 0.5 * 1e-3));
+        assert_eq!(law.threshold(1.0, 0.02), (Regime::Orowan, 0.1 * 0.02));
+    }
+}
