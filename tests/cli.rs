@@ -677,3 +677,55 @@ fn an_unwritable_target_leaves_every_output_as_it_was() {
         "old"
     );
 }
+
+/// Issue #9 (1): a scene whose FE curve stops short of its target says so in the CSV, on the
+/// figure and in the run's output, exits 1, and `wavy check` fails on it.
+#[test]
+fn an_incomplete_fe_curve_is_marked_and_fails_run_and_check() {
+    let text = std::fs::read_to_string(here().join("experiments/fig3_fe_vs_model.toml"))
+        .unwrap()
+        .replace("aspect_ratios = [0.1, 0.18, 0.3]", "aspect_ratios = [0.1]")
+        .replace(
+            "tau_max_mpa = [0.0, 0.01, 0.05, 0.1, 0.15, 0.2]",
+            "tau_max_mpa = [0.0]",
+        )
+        .replace("mesh = \"default\"", "mesh = \"4\""); // the valley element ends at a/λ = 0.438
+    let d = tempfile::tempdir().unwrap();
+    std::fs::create_dir(d.path().join("experiments")).unwrap();
+    std::fs::write(d.path().join("experiments/coarse.toml"), text).unwrap();
+    let o = wavy(
+        &[
+            "run",
+            "experiments/coarse.toml",
+            "--out",
+            "out",
+            "--cache",
+            "cache",
+        ],
+        d.path(),
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("stopped short of their target"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(stdout(&o).contains("INCOMPLETE (coarse)"), "{}", stdout(&o));
+    let mse = std::fs::read_to_string(d.path().join("out/coarse_mse.csv")).unwrap();
+    assert!(
+        mse.contains("incomplete: the contact is complete at a/λ = 0.4377"),
+        "{mse}"
+    );
+    let svg = std::fs::read_to_string(d.path().join("out/coarse.svg")).unwrap();
+    assert!(svg.contains("INCOMPLETE"));
+    let o = wavy(
+        &["check", "--expected", "out", "--cache", "cache"],
+        d.path(),
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stdout(&o));
+    assert!(
+        stdout(&o).contains("FAIL coarse: incomplete finite-element curve"),
+        "{}",
+        stdout(&o)
+    );
+}

@@ -22,6 +22,12 @@ fn experiment_outputs() {
     insta::glob!("../experiments", "*.toml", |path| {
         let out =
             run_spec_file(path, &opts).unwrap_or_else(|e| panic!("{}: {e:#}", path.display()));
+        assert!(
+            out.incomplete.is_empty(),
+            "{}: a committed figure rests on incomplete FE curves: {:?}",
+            path.display(),
+            out.incomplete
+        );
         for table in &out.tables {
             let name = if table.name.is_empty() {
                 "csv".to_string()

@@ -56,7 +56,25 @@ pub fn run(
     }
     let output = runner::run_spec_file(spec, &opts)?;
     let written = runner::write_outputs(&output, out_dir)?;
-    report(&output, &written, out)
+    report(&output, &written, out)?;
+    refuse_incomplete(std::slice::from_ref(&output))
+}
+
+/// Exit 1 when a figure rests on incomplete FE curves: the outputs are written, marked
+/// INCOMPLETE, but they are not what was asked for.
+fn refuse_incomplete(outputs: &[SceneOutput]) -> Result<()> {
+    let incomplete: Vec<String> = outputs
+        .iter()
+        .flat_map(|o| o.incomplete.iter().map(move |n| format!("{}: {n}", o.stem)))
+        .collect();
+    if incomplete.is_empty() {
+        return Ok(());
+    }
+    anyhow::bail!(
+        "{} finite-element curve(s) stopped short of their target (the figures say INCOMPLETE):\n  {}",
+        incomplete.len(),
+        incomplete.join("\n  ")
+    )
 }
 
 /// `wavy reproduce`: every spec of a folder, all parsed before anything is computed or written.
@@ -79,7 +97,7 @@ pub fn reproduce(
         let written = runner::write_outputs(o, out_dir)?;
         report(o, &written, out)?;
     }
-    Ok(())
+    refuse_incomplete(&outputs)
 }
 
 /// `wavy check`: recompute every spec and compare with the golden tables; exit 1 on a regression.
@@ -120,6 +138,9 @@ fn report(output: &SceneOutput, written: &[PathBuf], out: &mut impl Write) -> Re
     for n in &output.notes {
         writeln!(out, "note ({}): {n}", output.stem)?;
     }
+    for n in &output.incomplete {
+        writeln!(out, "INCOMPLETE ({}): {n}", output.stem)?;
+    }
     Ok(())
 }
 
@@ -141,6 +162,9 @@ fn spec_files(dir: &Path) -> Result<Vec<PathBuf>> {
 fn format_check_report(r: &CheckReport, worst: usize) -> String {
     use std::fmt::Write;
     let mut s = String::new();
+    for n in &r.incomplete {
+        let _ = writeln!(s, "FAIL {}: incomplete finite-element curve: {n}", r.stem);
+    }
     for (file, result) in &r.tables {
         match result {
             Err(e) => {

@@ -151,8 +151,10 @@ fn last_active(st: &State) -> usize {
 
 /// The target of the next edge event: the first contact-face node beyond the last
 /// active one that lies at least `da_target` beyond the current edge `a` and has a
-/// clearly open gap (a node released with a vanishing multiplier sits at gap 0). `None`
-/// at full contact (the next edge node would be the valley node, `x = λ/2`).
+/// clearly open gap (a node released with a vanishing multiplier sits at gap 0), up to
+/// and including the valley node (`x = λ/2`): its event puts the edge in the last element,
+/// the largest `a` the mesh resolves. `None` once the valley node is in contact (full
+/// contact: no edge event is left).
 pub(crate) fn next_target(model: &Model, st: &State, a: f64, da_target: f64) -> Option<usize> {
     let nb = model.mesh.bottom.len();
     let c = last_active(st);
@@ -163,10 +165,10 @@ pub(crate) fn next_target(model: &Model, st: &State, a: f64, da_target: f64) -> 
     let gaps = model.gaps(st);
     let open_tol = open_gap_tolerance(model);
     let mut k = c + 1;
-    while k + 2 < nb && (xs[k] < a + da_target || gaps[k] <= open_tol) {
+    while k + 1 < nb && (xs[k] < a + da_target || gaps[k] <= open_tol) {
         k += 1;
     }
-    (k + 1 < nb).then_some(k)
+    Some(k)
 }
 
 /// Activate the nodes that [`next_target`] skipped because they touch with a vanishing

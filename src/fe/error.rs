@@ -68,6 +68,15 @@ pub enum SolveError {
         /// faer's message.
         message: String,
     },
+    /// Every contact-face node is in contact (the valley node touched) before the contact
+    /// half-width reached its target: the mesh cannot resolve a larger one.
+    #[error("the contact is complete at a/λ = {a_over_lambda:.4}, short of the target {target:.4}: the valley node touched, and this mesh resolves no contact edge beyond its last element; refine the mesh (more elements along the face) or lower the target")]
+    TargetBeyondMesh {
+        /// Contact half-width reached (the edge in the last element).
+        a_over_lambda: f64,
+        /// The requested `until_a_over_lambda`.
+        target: f64,
+    },
     /// The load-step budget was exhausted before reaching the target contact width.
     #[error("maximum number of load steps ({steps}) reached at a/λ = {a_over_lambda:.4}")]
     TooManySteps {

@@ -589,6 +589,13 @@ pub(crate) fn trace(
         path.advance(st, point, grad, extrapolated);
         step += 1;
     }
+    if path.a < opts.until_a_over_lambda {
+        let error = SolveError::TargetBeyondMesh {
+            a_over_lambda: path.a,
+            target: opts.until_a_over_lambda,
+        };
+        return Err(path.fail(error));
+    }
     let final_state = deformed_state(model, &path.cur, &path.grad, estar);
     Ok(Curve {
         points: path.points,

@@ -197,5 +197,6 @@ fn run(title: &str, s: &CorrectionSurfacesScene) -> Result<SceneResult> {
         tables: vec![table],
         figure,
         notes,
+        incomplete: vec![],
     })
 }

@@ -178,5 +178,6 @@ fn run(title: &str, s: &DeformedMeshScene, opts: &RunOptions) -> Result<SceneRes
         tables: vec![table],
         figure,
         notes: vec![],
+        incomplete: vec![],
     })
 }

@@ -136,6 +136,7 @@ fn run(title: &str, s: &FeVsModelScene, opts: &RunOptions) -> Result<SceneResult
     let mut panels = vec![];
     let mut extrapolated_panels = vec![];
     let mut notes = vec![];
+    let mut incomplete = vec![];
     // Rows: τ_max; columns: AR.
     for &tau in &taus {
         for &ar in &ars {
@@ -214,11 +215,11 @@ fn run(title: &str, s: &FeVsModelScene, opts: &RunOptions) -> Result<SceneResult
                     None => "complete".to_string(),
                     Some(f) => {
                         let reached = fe.points.last().map_or(0.0, |p| p.a_over_lambda);
-                        panel_notes.push(format!("FE stopped at a/λ = {reached:.3}"));
-                        notes.push(format!(
+                        panel_notes.push(format!("FE INCOMPLETE: stopped at a/λ = {reached:.3}"));
+                        incomplete.push(format!(
                             "FE curve AR = {ar}, τ_max = {tau} MPa stopped at a/λ = {reached:.4}: {f}"
                         ));
-                        format!("stopped: {f}")
+                        format!("incomplete: {f}")
                     }
                 };
                 row.push(status.into());
@@ -276,6 +277,12 @@ fn run(title: &str, s: &FeVsModelScene, opts: &RunOptions) -> Result<SceneResult
             fe.tau_max_mpa.iter().map(|t| t.get()).collect::<Vec<_>>()
         ));
     }
+    if !incomplete.is_empty() {
+        footer.push(format!(
+            "INCOMPLETE FE curves ({}): each stops short of its target a/λ; see the panels and fe_status in the MSE table.",
+            incomplete.len()
+        ));
+    }
     if !extrapolated_panels.is_empty() {
         let note = format!(
             "WNL evaluated outside its fit domain in: {}",
@@ -302,5 +309,6 @@ fn run(title: &str, s: &FeVsModelScene, opts: &RunOptions) -> Result<SceneResult
         tables,
         figure,
         notes,
+        incomplete,
     })
 }

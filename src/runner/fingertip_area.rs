@@ -302,5 +302,6 @@ fn run(title: &str, s: &FingertipAreaScene, spec_dir: &Path) -> Result<SceneResu
         tables: vec![table],
         figure,
         notes,
+        incomplete: vec![],
     })
 }

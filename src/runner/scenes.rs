@@ -36,9 +36,11 @@ pub struct SceneResult {
     pub tables: Vec<Table>,
     /// Its figure (caption, panels and footer).
     pub figure: Figure,
-    /// What the reader must know (missing data, extrapolation, incomplete curves), printed
-    /// with the run's output.
+    /// What the reader must know (missing data, extrapolation), printed with the run's output.
     pub notes: Vec<String>,
+    /// Finite-element curves that stopped short of their target, each with the reason. The
+    /// figure and tables say so; `wavy check` and the snapshot test fail on any.
+    pub incomplete: Vec<String>,
 }
 
 /// One kind of experiment: a spec section that validates itself and runs.

@@ -83,10 +83,11 @@ fn run(title: &str, s: &Table1RefitScene, opts: &RunOptions) -> Result<SceneResu
     let cases = s.fe_cases(opts);
     let outcomes = fe_cases::solve_all(&cases, opts)?;
     let mut notes = vec![];
+    let mut incomplete = vec![];
     let mut samples = vec![];
     for (case, outcome) in cases.iter().zip(&outcomes) {
         if let Some(f) = &outcome.failure {
-            notes.push(format!(
+            incomplete.push(format!(
                 "FE curve AR = {}, τ_max = {} MPa is incomplete ({f}); its converged points are fitted",
                 case.problem.aspect_ratio, case.tau_max_mpa
             ));
@@ -242,12 +243,21 @@ fn run(title: &str, s: &Table1RefitScene, opts: &RunOptions) -> Result<SceneResu
                 s.fe.tau_max_mpa.iter().map(|t| t.get()).collect::<Vec<_>>()
             ),
             best_reading,
-        ],
+        ]
+        .into_iter()
+        .chain((!incomplete.is_empty()).then(|| {
+            format!(
+                "INCOMPLETE: {} FE curve(s) stop short of their target a/λ; the fit uses their converged points.",
+                incomplete.len()
+            )
+        }))
+        .collect(),
         font_px: 16,
     };
     Ok(SceneResult {
         tables: vec![coefficients, quality],
         figure,
         notes,
+        incomplete,
     })
 }
