@@ -4,7 +4,7 @@
 CARGO ?= cargo
 export CARGO_TERM_COLOR ?= never
 
-.PHONY: all reproduce test lint check bless bench clean
+.PHONY: all reproduce test lint check bless bench fuzz clean
 
 all: reproduce
 
@@ -32,6 +32,11 @@ bless: reproduce
 bench:
 	$(CARGO) bench --locked
 	$(CARGO) run --release --locked --quiet --example bench_medians
+
+## The property and fuzz suites with 10⁶ cases each (make test runs 10⁴); WAVY_FUZZ_SEED picks another seed.
+fuzz:
+	WAVY_FUZZ_CASES=1000000 $(CARGO) test --release --locked --test extremes_models --test fuzz_specs -- --nocapture
+	WAVY_FUZZ_CASES=1000000 $(CARGO) test --release --locked --bin wavy -- --nocapture
 
 clean:
 	$(CARGO) clean

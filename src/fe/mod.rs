@@ -26,10 +26,14 @@
 //! * [`linsys`]: the sparse direct solves through faer (the fallback chain of the
 //!   factorisations is described there);
 //! * [`shear_test`]: a block pressed onto a flat and sheared, verifying the friction law;
+//! * [`curve`]: the computed curve (points, last deformed state) and the CSV row of a point;
+//! * [`error`]: why a curve could not be completed, with the points converged before;
 //! * [`convergence`]: interpolation of curves at fixed `a/λ` and the mesh-convergence
 //!   (Richardson) table.
 //!
-//! The solver does no I/O.
+//! The solver does no I/O, and takes every physical parameter as an argument (the
+//! defaults live above it, in `crate::defaults`). A curve is complete (it reaches
+//! `until_a_over_lambda`) or an error that carries the points converged before it.
 
 // Index loops mirror the tensor index notation of the documented formulas.
 #![allow(clippy::needless_range_loop)]

@@ -4,19 +4,24 @@
 //! temporary file in the target folder and renamed into place, so that a failed or
 //! interrupted run never leaves a partial CSV or SVG behind.
 
-pub mod atomic_write;
-pub mod correction_surfaces;
-pub mod deformed_mesh;
-pub mod fe_cases;
-pub mod fe_vs_model;
-pub mod fingertip_area;
-pub mod measured;
+#[macro_use]
 pub mod scenes;
+pub mod atomic_write;
+pub mod fe_cases;
+pub mod measured;
 pub mod sweep;
-pub mod table1_refit;
+
+// The one list of scenes: `module::SectionType`, one line each (see `scenes`).
+scene_registry! {
+    correction_surfaces::CorrectionSurfacesScene,
+    fe_vs_model::FeVsModelScene,
+    fingertip_area::FingertipAreaScene,
+    deformed_mesh::DeformedMeshScene,
+    table1_refit::Table1RefitScene,
+}
 
 pub use atomic_write::write_atomic;
-pub use scenes::{Scene, SceneContext, SceneResult, Spec};
+pub use scenes::{Scene, SceneContext, SceneResult};
 
 use crate::models::{ModelKind, ModelLaw};
 use crate::spec::{ModelSelection, SpecError};

@@ -1,24 +1,20 @@
 //! The one list of scenes, and what a scene is.
 //!
 //! A scene is a section type (`[fe_vs_model]`, …) that validates itself and turns into tables
-//! and a figure. Adding one takes a TOML file in `experiments/`, one runner file in
-//! `src/runner/` that defines its section type and implements [`Scene`], and one line in
-//! [`scene_registry!`] below: the registry generates the whole-file type [`Spec`] (one
-//! optional table per scene), the "exactly one scene table" rule and its message.
+//! and a figure. Adding one takes a TOML file in `experiments/`, one runner file
+//! `src/runner/<table>.rs` that defines its section type and implements [`Scene`], and one line
+//! in the `scene_registry!` invocation in `src/runner/mod.rs`: the registry declares the module
+//! and generates the whole-file type [`Spec`] (one optional table per scene, named like its
+//! module), the "exactly one scene table" rule and its message.
 
 use super::fe_cases::FeCase;
 use super::RunOptions;
 use crate::plot::Figure;
-use crate::spec::{parse_document, CheckTolerance, Location, SpecError, Validator};
+use crate::spec::{parse_document, Location, SpecError, Validator};
 use crate::table::Table;
-use serde::Deserialize;
 use std::path::Path;
 
-use super::correction_surfaces::CorrectionSurfacesScene;
-use super::deformed_mesh::DeformedMeshScene;
-use super::fe_vs_model::FeVsModelScene;
-use super::fingertip_area::FingertipAreaScene;
-use super::table1_refit::Table1RefitScene;
+use super::Spec;
 
 /// What a scene needs besides its section.
 pub struct SceneContext<'a> {
@@ -58,20 +54,23 @@ pub trait Scene: std::fmt::Debug + Sync {
     fn run(&self, ctx: &SceneContext) -> anyhow::Result<SceneResult>;
 }
 
-/// Generates [`Spec`] from the list of scene tables: `table_name => SectionType`.
+/// Declares each scene's module and generates [`Spec`] from the list `module::SectionType`:
+/// the scene's table in a spec is named like its module.
 macro_rules! scene_registry {
-    ($($table:ident => $section:ty),+ $(,)?) => {
+    ($($table:ident :: $section:ident),+ $(,)?) => {
+        $(pub mod $table;)+
+
         /// A whole spec file: a title, the `[check]` tolerances, and exactly one scene table.
-        #[derive(Debug, Clone, Deserialize)]
+        #[derive(Debug, Clone, serde::Deserialize)]
         #[serde(deny_unknown_fields)]
         pub struct Spec {
             /// Figure title.
             pub title: String,
             /// How `wavy check` compares a recomputation with `expected/`.
-            pub check: CheckTolerance,
+            pub check: $crate::spec::CheckTolerance,
             $(
                 #[doc = concat!("The `[", stringify!($table), "]` scene.")]
-                pub $table: Option<$section>,
+                pub $table: Option<$table::$section>,
             )+
         }
 
@@ -91,14 +90,6 @@ macro_rules! scene_registry {
             }
         }
     };
-}
-
-scene_registry! {
-    correction_surfaces => CorrectionSurfacesScene,
-    fe_vs_model => FeVsModelScene,
-    fingertip_area => FingertipAreaScene,
-    deformed_mesh => DeformedMeshScene,
-    table1_refit => Table1RefitScene,
 }
 
 impl Spec {
