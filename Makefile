@@ -4,12 +4,14 @@
 CARGO ?= cargo
 export CARGO_TERM_COLOR ?= never
 
-.PHONY: all reproduce test lint check bless bench fuzz clean
+.PHONY: all reproduce test lint check bless stale bench fuzz clean
 
 all: reproduce
 
 ## Rebuild every figure (figures/*.svg) and the numbers behind it (figures/*.csv).
+## The first run compiles for about three minutes (cargo shows its progress).
 reproduce:
+	$(CARGO) build --release --locked
 	$(CARGO) run --release --locked --quiet -- reproduce
 
 ## Every test (release mode: the finite-element tests need it), after formatting and lints.
@@ -24,9 +26,25 @@ lint:
 check:
 	$(CARGO) run --release --locked --quiet -- check
 
-## Accept the current numbers as golden: copy figures/*.csv into expected/ (review the diff!).
-bless: reproduce
+## Accept an intended change of results in one command: figures, expected/ (golden numbers), the
+## refit coefficient sets (generated from expected/table1_refit.csv at build time, so a second
+## pass draws Fig. 3 with the new refit) and the snapshots; then list what changed. Review it with
+## `wavy diff --base HEAD` (review/summary.md) before committing.
+bless:
+	$(CARGO) build --release --locked
+	$(CARGO) run --release --locked --quiet -- reproduce
 	cp figures/*.csv expected/
+	$(CARGO) run --release --locked --quiet -- reproduce
+	cp figures/*.csv expected/
+	INSTA_UPDATE=always $(CARGO) test --release --locked --test snapshots
+	@echo "changed by bless:"; git status --short -- figures expected tests/snapshots
+
+## Fails, naming the files, when a committed figure or golden table is not what the code computes now
+## (CI runs it after make test).
+stale:
+	$(CARGO) build --release --locked
+	$(CARGO) run --release --locked --quiet -- reproduce
+	@bash .ci/stale-figures
 
 ## Timings (medians) of the solver and the model laws.
 bench:

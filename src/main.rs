@@ -64,6 +64,10 @@ enum Command {
     /// from first contact until a/λ reaches the target (non-zero exit, after the converged rows,
     /// when the solver cannot go on).
     Solve(cli::solve::SolveArgs),
+    /// Compare the figures' tables with a git revision: review/<figure>.svg overlays (base grey
+    /// and dashed) and review/summary.md, what moved per panel; exit 1 when something moved
+    /// beyond a spec's [check] tolerances.
+    Diff(cli::diff::DiffArgs),
     /// Evaluate a model law, forward (a/λ → p̄/E*) or inverse (p̄/E* → a/λ); CSV on stdout,
     /// numbers in shortest round-trip form.
     Eval(cli::eval::EvalArgs),
@@ -122,5 +126,6 @@ fn run(cli: Cli, out: &mut Stdout) -> anyhow::Result<ExitCode> {
         } => cli::specs::check(&experiments, &expected, &sweep, out),
         Command::Solve(args) => cli::solve::solve(&args, out),
         Command::Eval(args) => cli::eval::eval(&args, out).map(|()| ExitCode::SUCCESS),
+        Command::Diff(args) => cli::diff::diff(&args, out),
     }
 }

@@ -76,6 +76,18 @@ impl Table {
         self.rows.push(row);
     }
 
+    /// Row `i` (0-based) named by the values of its `keys` columns, e.g.
+    /// `aspect_ratio 0.3, tau_max_mpa 0.2`.
+    pub fn panel_name(&self, i: usize, keys: &[String]) -> String {
+        keys.iter()
+            .filter_map(|k| {
+                let j = self.header.iter().position(|h| h == k)?;
+                Some(format!("{k} {}", self.rows.get(i)?[j]))
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
     /// The file name of this table for a scene called `stem`.
     pub fn file_name(&self, stem: &str) -> String {
         if self.name.is_empty() {
@@ -148,6 +160,7 @@ impl Table {
                         let both_nan = x.is_nan() && e.is_nan();
                         Deviation {
                             row: i + 1,
+                            panel: String::new(),
                             column: self.header[j].clone(),
                             expected: want.into(),
                             found: numfmt::sig(*x),
@@ -165,6 +178,7 @@ impl Table {
                         let found = cell.to_string();
                         Deviation {
                             row: i + 1,
+                            panel: String::new(),
                             column: self.header[j].clone(),
                             pass: found == want,
                             relative: if found == want { 0.0 } else { f64::INFINITY },
@@ -191,7 +205,11 @@ impl Table {
 /// One compared cell.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Deviation {
+    /// 1-based data row.
     pub row: usize,
+    /// The panel or series the row belongs to, named by its key columns
+    /// (`aspect_ratio 0.3, tau_max_mpa 0.2`; empty for a table without keys).
+    pub panel: String,
     pub column: String,
     pub expected: String,
     pub found: String,

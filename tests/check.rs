@@ -50,3 +50,50 @@ fn changed_columns_or_rows_are_errors() {
     let shorter: String = golden.lines().take(10).map(|l| format!("{l}\n")).collect();
     assert!(t.compare(&shorter, 1e-5, 0.0).is_err());
 }
+
+/// A spec that omits a physical parameter takes the default from `src/defaults.rs`: the
+/// committed FE specs set none of them, so a changed default shows in the figures.
+#[test]
+fn specs_take_the_physical_defaults_from_one_place() {
+    use wavy::runner::fe_cases::FePhysics;
+    let spec = wavy::runner::load_spec(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("experiments/fig3_fe_vs_model.toml"),
+    )
+    .unwrap();
+    let fe = spec.fe_vs_model.as_ref().unwrap().fe.as_ref().unwrap();
+    let physics = FePhysics::from(fe);
+    let d = wavy::defaults::layer_problem(0.1);
+    assert_eq!(physics.estar_mpa, wavy::defaults::fe_estar_mpa());
+    assert_eq!(physics.thickness_over_lambda, d.thickness_over_lambda);
+    assert_eq!(physics.kappa_over_g, d.kappa_over_g);
+    assert_eq!(physics.kinematics, d.kinematics);
+    assert_eq!(
+        physics.friction_coefficient,
+        wavy::defaults::friction_coefficient()
+    );
+    assert_eq!(
+        physics.elastic_slip_over_element,
+        wavy::defaults::elastic_slip_over_element()
+    );
+    assert_eq!(fe.mesh, wavy::fe::MeshLevel::Default);
+    for name in ["fig3_fe_vs_model", "table1_refit", "deformed_mesh_ar030"] {
+        let text = std::fs::read_to_string(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join(format!("experiments/{name}.toml")),
+        )
+        .unwrap();
+        for field in [
+            "estar_mpa =",
+            "thickness_over_lambda",
+            "kappa_over_g",
+            "friction_coefficient",
+            "mesh =",
+            "kinematics",
+        ] {
+            assert!(
+                !text.lines().any(|l| l.starts_with(field)),
+                "{name}.toml pins `{field}`: say why in the README or let the default apply"
+            );
+        }
+    }
+}

@@ -689,7 +689,8 @@ fn an_incomplete_fe_curve_is_marked_and_fails_run_and_check() {
             "tau_max_mpa = [0.0, 0.01, 0.05, 0.1, 0.15, 0.2]",
             "tau_max_mpa = [0.0]",
         )
-        .replace("mesh = \"default\"", "mesh = \"4\""); // the valley element ends at a/λ = 0.438
+        // the valley element ends at a/λ = 0.438
+        .replace("[fe_vs_model.fe]", "[fe_vs_model.fe]\nmesh = \"4\"");
     let d = tempfile::tempdir().unwrap();
     std::fs::create_dir(d.path().join("experiments")).unwrap();
     std::fs::write(d.path().join("experiments/coarse.toml"), text).unwrap();

@@ -117,7 +117,7 @@ fn a_rerun_cleans_up_after_a_kill_in_the_cache_folder_too() {
         "tau_max_mpa = [0.0, 0.01, 0.05, 0.1, 0.15, 0.2]  # every panel",
         "tau_max_mpa = [0.0]  # one panel",
     )
-    .replace("mesh = \"default\"", "mesh = \"16\"")
+    .replace("[fe_vs_model.fe]", "[fe_vs_model.fe]\nmesh = \"16\"")
     .replace("until_a_over_lambda = 0.45", "until_a_over_lambda = 0.2");
     std::fs::write(dir.path().join("big.toml"), spec).unwrap();
     let status = wavy(dir.path()).status().unwrap();

@@ -49,3 +49,28 @@ fn outputs_are_byte_identical_across_runs() {
     assert_eq!(a.svg, b.svg);
     assert_eq!(a.tables, b.tables);
 }
+
+/// Every committed snapshot belongs to a spec in `experiments/` (a removed or renamed spec
+/// leaves none behind): unreferenced snapshots are rejected.
+#[test]
+fn no_snapshot_without_its_spec() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut checked = 0;
+    for e in std::fs::read_dir(root.join("tests/snapshots"))
+        .unwrap()
+        .flatten()
+    {
+        let name = e.file_name().to_string_lossy().into_owned();
+        let spec = name
+            .strip_prefix("snapshots__")
+            .and_then(|n| n.split_once('@'))
+            .and_then(|(_, rest)| rest.strip_suffix(".snap"))
+            .unwrap_or_else(|| panic!("tests/snapshots/{name}: not a snapshot of this test"));
+        assert!(
+            root.join("experiments").join(spec).exists(),
+            "tests/snapshots/{name}: no experiments/{spec}; remove the snapshot"
+        );
+        checked += 1;
+    }
+    assert!(checked >= 10, "{checked} snapshots");
+}

@@ -2,6 +2,7 @@
 //! (`wavy::runner` for specs, `wavy::fe` and `wavy::models` for single evaluations). Nothing in
 //! the library depends on this module: it is part of the binary only.
 
+pub mod diff;
 pub mod eval;
 pub mod input;
 pub mod output;

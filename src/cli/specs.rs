@@ -181,14 +181,15 @@ fn format_check_report(r: &CheckReport, worst: usize) -> String {
                 );
                 let _ = writeln!(
                     s,
-                    "     {:>6}  {:<28} {:>14} {:>14} {:>11}",
-                    "row", "column", "expected", "computed", "rel. dev."
+                    "     {:>6}  {:<36} {:<28} {:>14} {:>14} {:>11}",
+                    "row", "panel", "column", "expected", "computed", "rel. dev."
                 );
                 for d in c.deviations.iter().take(worst) {
                     let _ = writeln!(
                         s,
-                        "     {:>6}  {:<28} {:>14} {:>14} {:>11.3e}{}",
+                        "     {:>6}  {:<36} {:<28} {:>14} {:>14} {:>11.3e}{}",
                         d.row,
+                        d.panel,
                         d.column,
                         d.expected,
                         d.found,

@@ -256,7 +256,7 @@ fn run(title: &str, s: &FingertipAreaScene, spec_dir: &Path) -> Result<SceneResu
                 }
                 None => {
                     let note = format!(
-                        "Measured points of Warman & Ennos (2009) NOT SHOWN: no data file at {rel} (schema: data/README.md)."
+                        "Measured points of Warman & Ennos (2009) NOT SHOWN: no data file {rel} beside the spec (schema: experiments/data/README.md)."
                     );
                     footer.push(note.clone());
                     footer.push(

@@ -9,6 +9,7 @@ pub mod scenes;
 pub mod atomic_write;
 pub mod fe_cases;
 pub mod measured;
+pub mod review;
 pub mod sweep;
 
 // The one list of scenes: `module::SectionType`, one line each (see `scenes`).
@@ -220,6 +221,13 @@ pub fn check_spec_file(path: &Path, expected_dir: &Path, opts: &RunOptions) -> R
                             golden: golden.clone(),
                             error,
                         })
+                })
+                .map(|mut c| {
+                    let keys = review::ColumnRoles::of(&t.header).keys;
+                    for d in &mut c.deviations {
+                        d.panel = t.panel_name(d.row - 1, &keys);
+                    }
+                    c
                 });
             (file, result)
         })
