@@ -221,14 +221,7 @@ mod tests {
 
     #[test]
     fn cache_text_round_trips_exactly() {
-        let p = CurvePoint {
-            a_over_lambda: 0.1 + 0.2,
-            p_over_estar: std::f64::consts::PI / 7.0,
-            p_over_estar_reaction: 1.0 / 3.0,
-            slab_displacement_over_lambda: -1e-17,
-            newton_iterations: 4,
-            active_nodes: 17,
-        };
+        let p = crate::fe::curve::awkward_point();
         for failure in [None, Some("Newton diverged at load step 3".to_string())] {
             let o = FeOutcome {
                 points: vec![p, p],
