@@ -208,7 +208,9 @@ impl Extremes {
         self.max_rel = self
             .max_rel
             .max(if base != 0.0 { abs / base.abs() } else { abs });
-        self.moved |= !(abs <= abs_tol + rel_tol * base.abs());
+        // a NaN on one side only is a change too
+        let within = abs <= abs_tol + rel_tol * base.abs();
+        self.moved |= !within;
     }
 }
 
@@ -384,8 +386,7 @@ pub fn summary(stem: &str, changes: &[TableChange], presence: &[(String, Presenc
 /// The overlay of one figure: a panel per key group of its curve tables (the ones that moved
 /// most, at most [`MAX_PANELS`]), base grey and dashed under the new data.
 pub fn overlay(stem: &str, tables: &[(String, CsvTable, CsvTable, TableChange)]) -> Option<Figure> {
-    // panel name → (largest relative change, series)
-    let mut panels: BTreeMap<String, (f64, Vec<Series>, String)> = BTreeMap::new();
+    let mut panels: BTreeMap<String, OverlayPanel> = BTreeMap::new();
     for (file, base, new, change) in tables {
         let Some(x) = &change.roles.x else { continue };
         let (Some(bx), Some(nx)) = (base.column(x), new.column(x)) else {
@@ -396,10 +397,12 @@ pub fn overlay(stem: &str, tables: &[(String, CsvTable, CsvTable, TableChange)])
             panels_of(new, &change.roles),
         );
         for p in &change.panels {
-            let entry = panels
-                .entry(p.panel.clone())
-                .or_insert((0.0, vec![], x.clone()));
-            entry.0 = entry.0.max(p.largest_rel());
+            let entry = panels.entry(p.panel.clone()).or_insert(OverlayPanel {
+                largest_rel: 0.0,
+                series: vec![],
+                x: x.clone(),
+            });
+            entry.largest_rel = entry.largest_rel.max(p.largest_rel());
             let many = change.roles.values.len() > 1;
             for column in &change.roles.values {
                 let (Some(bj), Some(nj)) = (base.column(column), new.column(column)) else {
@@ -411,14 +414,14 @@ pub fn overlay(stem: &str, tables: &[(String, CsvTable, CsvTable, TableChange)])
                     continue;
                 }
                 let markers = file.ends_with("_fe_points.csv");
-                let color = palette::CYCLE[(entry.1.len() / 2) % palette::CYCLE.len()];
+                let color = palette::CYCLE[(entry.series.len() / 2) % palette::CYCLE.len()];
                 let label = if many {
                     column.clone()
                 } else {
                     format!("{column} ({file})")
                 };
-                entry.1.push(Series::dashed(None, palette::GREY, 1, b));
-                entry.1.push(if markers {
+                entry.series.push(Series::dashed(None, palette::GREY, 1, b));
+                entry.series.push(if markers {
                     Series::markers(Some(label), color, 3, n)
                 } else {
                     Series::line(Some(label), color, 2, n)
@@ -429,10 +432,14 @@ pub fn overlay(stem: &str, tables: &[(String, CsvTable, CsvTable, TableChange)])
     if panels.is_empty() {
         return None;
     }
-    let mut chosen: Vec<(String, (f64, Vec<Series>, String))> = panels.into_iter().collect();
+    let mut chosen: Vec<(String, OverlayPanel)> = panels.into_iter().collect();
     let total = chosen.len();
     if total > MAX_PANELS {
-        chosen.sort_by(|a, b| b.1 .0.total_cmp(&a.1 .0).then(a.0.cmp(&b.0)));
+        chosen.sort_by(|a, b| {
+            b.1.largest_rel
+                .total_cmp(&a.1.largest_rel)
+                .then(a.0.cmp(&b.0))
+        });
         chosen.truncate(MAX_PANELS);
         chosen.sort_by(|a, b| a.0.cmp(&b.0));
     }
@@ -440,27 +447,36 @@ pub fn overlay(stem: &str, tables: &[(String, CsvTable, CsvTable, TableChange)])
     let rows = chosen.len().div_ceil(cols);
     let panels = chosen
         .into_iter()
-        .map(|(name, (rel, series, x))| {
-            let xs = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.0)));
-            let ys = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
-            Panel {
-                title: if name.is_empty() {
-                    stem.to_string()
-                } else {
-                    name
+        .map(
+            |(
+                name,
+                OverlayPanel {
+                    largest_rel: rel,
+                    series,
+                    x,
                 },
-                x_label: x,
-                y_label: "value".into(),
-                x_range: xs,
-                y_range: ys,
-                series,
-                notes: vec![format!(
-                    "largest rel. change {}",
-                    numfmt::sig_digits(rel, 2)
-                )],
-                legend: Some(LegendPosition::UpperLeft),
-            }
-        })
+            )| {
+                let xs = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.0)));
+                let ys = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
+                Panel {
+                    title: if name.is_empty() {
+                        stem.to_string()
+                    } else {
+                        name
+                    },
+                    x_label: x,
+                    y_label: "value".into(),
+                    x_range: xs,
+                    y_range: ys,
+                    series,
+                    notes: vec![format!(
+                        "largest rel. change {}",
+                        numfmt::sig_digits(rel, 2)
+                    )],
+                    legend: Some(LegendPosition::UpperLeft),
+                }
+            },
+        )
         .collect();
     Some(Figure {
         width: 460 * cols as u32,
@@ -475,6 +491,13 @@ pub fn overlay(stem: &str, tables: &[(String, CsvTable, CsvTable, TableChange)])
         }],
         font_px: 14,
     })
+}
+
+/// One panel of an overlay: its series and the largest relative change of its values.
+struct OverlayPanel {
+    largest_rel: f64,
+    series: Vec<Series>,
+    x: String,
 }
 
 fn panels_of(t: &CsvTable, roles: &ColumnRoles) -> BTreeMap<String, Vec<usize>> {
@@ -505,7 +528,7 @@ mod tests {
         let col = &moved[0].columns[0];
         assert_eq!(col.column, "p_over_estar_wnl");
         assert!((col.max_abs - 0.05).abs() < 1e-12 && (col.max_rel - 0.1).abs() < 1e-12);
-        let md = summary("fig", &[c.clone()], &[]);
+        let md = summary("fig", std::slice::from_ref(&c), &[]);
         assert!(
             md.contains(
                 "| aspect_ratio 0.3, tau_max_mpa 0.2 **moved** | p_over_estar_wnl | 0.05 | 0.1 |"
