@@ -65,15 +65,18 @@ impl fmt::Display for Reading {
     }
 }
 
+/// A reading name that names no reading.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown reading `{0}`; allowed: bracket-sq, bracket-2x, literal")]
+pub struct ReadingParseError(pub String);
+
 impl FromStr for Reading {
-    type Err = String;
+    type Err = ReadingParseError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         Reading::ALL
             .into_iter()
             .find(|r| r.name() == s)
-            .ok_or_else(|| {
-                format!("unknown reading `{s}`; allowed: bracket-sq, bracket-2x, literal")
-            })
+            .ok_or_else(|| ReadingParseError(s.into()))
     }
 }
 

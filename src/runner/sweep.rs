@@ -43,11 +43,15 @@ pub struct Shard {
     pub count: usize,
 }
 
+/// A shard that is not `i/n` with `0 <= i < n`.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("value {0} is out of range; allowed: i/n with 0 <= i < n, e.g. 0/4")]
+pub struct ShardParseError(pub String);
+
 impl FromStr for Shard {
-    type Err = String;
+    type Err = ShardParseError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        let bad =
-            || format!("--shard = {s} is out of range; allowed: i/n with 0 <= i < n, e.g. 0/4");
+        let bad = || ShardParseError(s.into());
         let (i, n) = s.split_once('/').ok_or_else(bad)?;
         let (index, count): (usize, usize) = (
             i.trim().parse().map_err(|_| bad())?,
@@ -264,11 +268,8 @@ mod tests {
     fn shard_parsing_names_the_flag_and_range() {
         assert_eq!("2/4".parse::<Shard>(), Ok(Shard { index: 2, count: 4 }));
         for bad in ["4/4", "1/0", "a/2", "3"] {
-            let e = bad.parse::<Shard>().unwrap_err();
-            assert!(
-                e.contains(&format!("--shard = {bad} is out of range")),
-                "{e}"
-            );
+            let e = bad.parse::<Shard>().unwrap_err().to_string();
+            assert!(e.contains(&format!("value {bad} is out of range")), "{e}");
         }
     }
 }
