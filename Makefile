@@ -4,7 +4,7 @@
 CARGO ?= cargo
 export CARGO_TERM_COLOR ?= never
 
-.PHONY: all reproduce test lint check bless stale bench fuzz clean
+.PHONY: all reproduce test lint check bless stale bench bench-tiers fuzz clean
 
 all: reproduce
 
@@ -36,7 +36,7 @@ bless:
 	cp figures/*.csv expected/
 	$(CARGO) run --release --locked --quiet -- reproduce
 	cp figures/*.csv expected/
-	INSTA_UPDATE=always $(CARGO) test --release --locked --test snapshots
+	INSTA_UPDATE=always $(CARGO) test --release --locked --test snapshots --test speed_accuracy
 	@echo "changed by bless:"; git status --short -- figures expected tests/snapshots
 
 ## Fails, naming the files, when a committed figure or golden table is not what the code computes now
@@ -50,6 +50,13 @@ stale:
 bench:
 	$(CARGO) bench --locked
 	$(CARGO) run --release --locked --quiet --example bench_medians
+
+## Wall time of every tier of experiments/speed_accuracy.toml (one thread, median of 3 runs), written
+## to experiments/data/speed_accuracy_timings.csv, the cost axis of figures/speed_accuracy.svg
+## (about 40 minutes; run it on an otherwise idle machine, then `make reproduce` and commit both).
+bench-tiers:
+	$(CARGO) build --release --locked
+	$(CARGO) run --release --locked --quiet -- time-tiers
 
 ## The property and fuzz suites with 10⁶ cases each (make test runs 10⁴); WAVY_FUZZ_SEED picks another seed.
 fuzz:

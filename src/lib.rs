@@ -4,7 +4,8 @@
 //! `docs/architecture.md` draws it):
 //! - the core, with no I/O: [`models`] (Westergaard and the WNL model, their coefficient sets
 //!   and inverse), [`fe`] (the finite-strain finite-element solver), [`fit`] (re-deriving
-//!   Table 1);
+//!   Table 1), [`accuracy`] (the tiers that answer p̄(a), their measured errors and costs, and
+//!   the choice of the cheapest that meets a tolerance);
 //! - output primitives: [`numfmt`] (the one float formatter), [`table`] (tables, CSV,
 //!   comparison), [`plot`] (deterministic SVG);
 //! - [`defaults`] (the open physical parameters) and [`spec`] (TOML field types and checks);
@@ -13,6 +14,7 @@
 //! The command line lives in the binary (`src/main.rs`, `src/cli/`), so no library module can
 //! depend on it.
 
+pub mod accuracy;
 pub mod defaults;
 pub mod fe;
 pub mod fit;

@@ -71,6 +71,9 @@ enum Command {
     /// Evaluate a model law, forward (a/λ → p̄/E*) or inverse (p̄/E* → a/λ); CSV on stdout,
     /// numbers in shortest round-trip form.
     Eval(cli::eval::EvalArgs),
+    /// Measure the wall time of every tier of a speed_accuracy spec (one thread, median of
+    /// runs) and write the timings file its figure reads (make bench-tiers).
+    TimeTiers(cli::timing::TimeTiersArgs),
 }
 
 fn main() -> ExitCode {
@@ -127,5 +130,6 @@ fn run(cli: Cli, out: &mut Stdout) -> anyhow::Result<ExitCode> {
         Command::Solve(args) => cli::solve::solve(&args, out),
         Command::Eval(args) => cli::eval::eval(&args, out).map(|()| ExitCode::SUCCESS),
         Command::Diff(args) => cli::diff::diff(&args, out),
+        Command::TimeTiers(args) => cli::timing::time_tiers(&args, out).map(|()| ExitCode::SUCCESS),
     }
 }

@@ -8,6 +8,8 @@
 //!
 //! This module reads no file: [`parse_document`] takes the text and the name to quote in errors.
 
+use crate::accuracy::measured::{self, ChoiceError, Query, PHYSICS_COLUMNS};
+use crate::accuracy::Tier;
 use crate::defaults;
 use crate::fe::{Kinematics, MeshLevel};
 use crate::models::{CoefficientSet, ModelKind, Reading};
@@ -94,9 +96,19 @@ pub struct FeSection {
     #[serde(default)]
     pub kinematics: Kinematics,
     /// `coarse` (32×16), `default` (48×24), `fine` (72×36), or the number of elements along
-    /// the contact face.
+    /// the contact face; absent: `default`, or the mesh `tolerance` needs.
     #[serde(default, deserialize_with = "mesh_from_name")]
-    pub mesh: MeshLevel,
+    pub mesh: Option<MeshLevel>,
+    /// Instead of `mesh`: a relative tolerance of p̄/E*; the curves use the coarsest
+    /// finite-strain mesh whose measured error (expected/speed_accuracy.csv) meets it at every
+    /// case of the section ([`FeSection::mesh_for`]).
+    #[serde(default)]
+    pub tolerance: Option<Bounded<Positive>>,
+    /// Also solve each curve on the next coarser mesh and report the Richardson estimate of its
+    /// relative error (a column `error_estimate` and a note per panel; order measured by the
+    /// speed_accuracy scene). Doubles about a third of the cost.
+    #[serde(default)]
+    pub error_estimate: bool,
     /// Load until a/λ reaches this value, in (0, 0.5).
     pub until_a_over_lambda: Bounded<OpenHalfWidth>,
 }
@@ -117,10 +129,62 @@ fn default_elastic_slip_over_element() -> Bounded<Positive> {
     Bounded::trusted(defaults::elastic_slip_over_element())
 }
 /// A [`MeshLevel`] from its name or element count (see [`MeshLevel::ALLOWED`]).
-fn mesh_from_name<'de, D: Deserializer<'de>>(d: D) -> Result<MeshLevel, D::Error> {
+fn mesh_from_name<'de, D: Deserializer<'de>>(d: D) -> Result<Option<MeshLevel>, D::Error> {
     String::deserialize(d)?
         .parse::<MeshLevel>()
+        .map(Some)
         .map_err(de::Error::custom)
+}
+
+impl FeSection {
+    /// The mesh of the section's curves at these aspect ratios: `mesh` (`default` when absent),
+    /// or with `tolerance` the finest of the meshes it chooses at each (AR, τ_max) of the
+    /// section, so that every curve meets it.
+    pub fn mesh_for(&self, aspect_ratios: &[f64]) -> Result<MeshLevel, ChoiceError> {
+        let Some(tolerance) = self.tolerance.map(|t| t.get()) else {
+            return Ok(self.mesh.unwrap_or_default());
+        };
+        let physics = [
+            self.estar_mpa.get(),
+            self.thickness_over_lambda.get(),
+            self.kappa_over_g.get(),
+            self.friction_coefficient.get(),
+            self.elastic_slip_over_element.get(),
+        ];
+        let physics: Vec<(&str, f64)> = PHYSICS_COLUMNS.iter().copied().zip(physics).collect();
+        let table = measured::committed()?;
+        let mut finest: Option<MeshLevel> = None;
+        for tau in self.tau_max_mpa.iter().map(|t| t.get()) {
+            for &ar in aspect_ratios {
+                let query = Query {
+                    aspect_ratio: ar,
+                    tau_max_mpa: tau,
+                    a_over_lambda: (
+                        self.until_a_over_lambda.get(),
+                        self.until_a_over_lambda.get(),
+                    ),
+                    physics: &physics,
+                };
+                let choice = table.choose(tolerance, &query, |t| {
+                    matches!(
+                        t,
+                        Tier::Fe {
+                            kinematics: Kinematics::Finite,
+                            ..
+                        }
+                    )
+                })?;
+                let mesh = choice.tier.mesh().expect("an FE tier has a mesh");
+                if finest.is_none_or(|f| mesh.counts().0 > f.counts().0) {
+                    finest = Some(mesh);
+                }
+            }
+        }
+        finest.ok_or(ChoiceError::NoTierMeets {
+            tolerance,
+            best: None,
+        })
+    }
 }
 
 /// Which model lines to draw and how to evaluate the WNL law.
@@ -341,13 +405,37 @@ impl Validator<'_> {
         Ok(())
     }
 
-    /// The τ_max list of an FE section: non-empty, and each one of `panels` (when given).
+    /// An FE section: its τ_max list non-empty, each one of `panels` (when given); `mesh` or
+    /// `tolerance`, not both, and a tolerance the measurements can serve at `aspect_ratios`.
     pub fn fe_section(
         &self,
         field: &str,
         fe: &FeSection,
         panels: Option<&[f64]>,
+        aspect_ratios: &[f64],
     ) -> Result<(), SpecError> {
+        if let Some(t) = fe.tolerance {
+            let tolerance = format!("{field}.tolerance");
+            if let Some(mesh) = fe.mesh {
+                return Err(self.invalid(
+                    &tolerance,
+                    None,
+                    t.get().to_string(),
+                    format!("absent when `mesh` is set (here {mesh:?}): set one of the two"),
+                ));
+            }
+            if fe.kinematics != Kinematics::Finite {
+                return Err(self.invalid(
+                    &tolerance,
+                    None,
+                    t.get().to_string(),
+                    "absent with linear kinematics (the measured errors are of the finite-strain solution)".into(),
+                ));
+            }
+            if let Err(e) = fe.mesh_for(aspect_ratios) {
+                return Err(self.invalid(&tolerance, None, t.get().to_string(), e.to_string()));
+            }
+        }
         let field = format!("{field}.tau_max_mpa");
         self.non_empty(&field, fe.tau_max_mpa.len())?;
         for (i, t) in fe.tau_max_mpa.iter().map(|t| t.get()).enumerate() {

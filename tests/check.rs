@@ -75,7 +75,8 @@ fn specs_take_the_physical_defaults_from_one_place() {
         physics.elastic_slip_over_element,
         wavy::defaults::elastic_slip_over_element()
     );
-    assert_eq!(fe.mesh, wavy::fe::MeshLevel::Default);
+    assert_eq!(fe.mesh, None);
+    assert_eq!(fe.mesh_for(&[0.1]).unwrap(), wavy::fe::MeshLevel::Default);
     for name in ["fig3_fe_vs_model", "table1_refit", "deformed_mesh_ar030"] {
         let text = std::fs::read_to_string(
             std::path::Path::new(env!("CARGO_MANIFEST_DIR"))

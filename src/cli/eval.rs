@@ -7,14 +7,24 @@ use wavy::models::{
     a_over_lambda_at, CoefficientSet, InverseError, ModelKind, ModelLaw, PressureLaw, Reading,
 };
 
+/// The CSV header of `wavy eval`.
+pub const HEADER: &str =
+    "model,reading,coefficients,aspect_ratio,tau_max_mpa,a_over_lambda,p_over_estar,extrapolated";
+
 /// Arguments of `wavy eval`.
 #[derive(Debug, Clone, clap::Args)]
 #[command(group(clap::ArgGroup::new("input").required(true).args(["a_over_lambda", "p_over_estar"])))]
 pub struct EvalArgs {
     /// Which law: `westergaard` (linear, frictionless, exact) or `wnl` (Westergaard corrected
-    /// by the fitted polynomials A and B).
-    #[arg(long, value_parser = one_of::<ModelKind>(ModelKind::ALL.map(ModelKind::key)))]
-    pub model: ModelKind,
+    /// by the fitted polynomials A and B). Required unless --tolerance chooses.
+    #[arg(long, value_parser = one_of::<ModelKind>(ModelKind::ALL.map(ModelKind::key)), required_unless_present = "tolerance", conflicts_with = "tolerance")]
+    pub model: Option<ModelKind>,
+    /// Instead of --model: the cheapest tier (closed form or finite elements) whose measured
+    /// largest relative error of p̄/E* at this (AR, τ_max) is at most this (e.g. 0.01); the choice,
+    /// its measured error and cost go to stderr (measurements: expected/speed_accuracy.csv).
+    /// Forward evaluation only.
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["p_over_estar", "reading", "coefficients"])]
+    pub tolerance: Option<f64>,
     /// Reading of the paper's Eq. 4 (WNL only): bracket-sq p̄_W·[B + x·A·cos²(πx)],
     /// bracket-2x p̄_W·[B + x·A·cos(2πx)], literal p̄_W·B + x·A·cos²(πx).
     #[arg(long, default_value = "bracket-sq", value_parser = one_of::<Reading>(Reading::ALL.map(Reading::name)))]
@@ -41,19 +51,25 @@ pub struct EvalArgs {
 pub fn eval(args: &EvalArgs, out: &mut impl Write) -> Result<()> {
     positive("--ar", args.ar)?;
     non_negative("--tau-max-mpa", args.tau_max_mpa)?;
+    if let Some(tolerance) = args.tolerance {
+        return super::tolerance::eval(args, tolerance, out);
+    }
+    let model = args
+        .model
+        .expect("clap requires --model without --tolerance");
     let law = ModelLaw::new(
-        args.model,
+        model,
         args.ar,
         args.tau_max_mpa,
         args.reading,
         args.coefficients,
     );
-    let (reading, coefficients) = match args.model {
+    let (reading, coefficients) = match model {
         ModelKind::Westergaard => ("", ""),
         ModelKind::Wnl => (args.reading.name(), args.coefficients.name()),
     };
     // the inputs that produced a value, for messages
-    let inputs = match args.model {
+    let inputs = match model {
         ModelKind::Westergaard => format!("--model westergaard --ar {:?}", args.ar),
         ModelKind::Wnl => format!(
             "--model wnl --reading {reading} --coefficients {coefficients} --ar {:?} --tau-max-mpa {:?}",
@@ -98,15 +114,12 @@ pub fn eval(args: &EvalArgs, out: &mut impl Write) -> Result<()> {
         })?;
         rows.push((x, p));
     }
-    writeln!(
-        out,
-        "model,reading,coefficients,aspect_ratio,tau_max_mpa,a_over_lambda,p_over_estar,extrapolated"
-    )?;
+    writeln!(out, "{HEADER}")?;
     for (x, p) in rows {
         writeln!(
             out,
             "{},{reading},{coefficients},{},{},{x},{p},{}",
-            args.model.key(),
+            model.key(),
             args.ar,
             args.tau_max_mpa,
             law.is_extrapolated()

@@ -164,7 +164,7 @@ fn random_command_lines_are_answered_or_refused_by_flag() {
                     }
                     r.err()
                 }
-                Command::Solve(a) => a.setup().err().map(anyhow::Error::from),
+                Command::Solve(a) => a.setup().err(),
                 _ => unreachable!("only eval and solve are generated"),
             };
             match outcome {

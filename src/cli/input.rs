@@ -23,6 +23,14 @@ pub enum InputError {
         value: String,
         reason: String,
     },
+    /// A valid value that this command cannot serve (a tolerance no measured tier meets, a
+    /// point outside the measured region, a spec of another kind).
+    #[error("{flag} = {value}: {reason}")]
+    Refused {
+        flag: String,
+        value: String,
+        reason: String,
+    },
 }
 
 /// An [`InputError::OutOfRange`].

@@ -8,6 +8,8 @@ pub mod input;
 pub mod output;
 pub mod solve;
 pub mod specs;
+pub mod timing;
+pub mod tolerance;
 
 #[cfg(test)]
 mod fuzz;

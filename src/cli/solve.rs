@@ -34,16 +34,27 @@ pub struct SolveArgs {
     pub kinematics: Kinematics,
     /// Mesh: coarse (32×16 elements), default (48×24), fine (72×36), or N elements along the
     /// contact face (4 to 2048; N/2 across the thickness).
-    #[arg(long, default_value = "default", value_parser = super::input::mesh)]
+    #[arg(long, default_value = "default", value_parser = super::input::mesh, conflicts_with = "tolerance")]
     pub mesh: MeshLevel,
+    /// Instead of --mesh: the coarsest mesh whose measured largest relative error of p̄/E* at
+    /// this (AR, τ_max) is at most this (e.g. 0.005); the choice goes to stderr
+    /// (measurements: expected/speed_accuracy.csv, default physics only).
+    #[arg(long, allow_hyphen_values = true)]
+    pub tolerance: Option<f64>,
+    /// Also solve the next coarser mesh (1.5 times fewer elements) and add the column
+    /// error_estimate: the Richardson estimate of each point's relative error, with the
+    /// convergence order measured by the speed_accuracy scene (README, "Speed and accuracy");
+    /// empty below the coarser curve's first contact point.
+    #[arg(long)]
+    pub error_estimate: bool,
     /// Load until the contact half-width a/λ reaches this value (in (0, 0.5)).
     #[arg(long, default_value_t = 0.45, allow_hyphen_values = true)]
     pub until_a_over_lambda: f64,
 }
 
 impl SolveArgs {
-    /// The solver's problem and options, or an [`InputError`] naming the flag.
-    pub fn setup(&self) -> Result<(LayerProblem, SolveOptions), InputError> {
+    /// The solver's problem and options, or an error naming the flag ([`InputError`]).
+    pub fn setup(&self) -> Result<(LayerProblem, SolveOptions)> {
         positive("--ar", self.ar)?;
         positive("--estar-mpa", self.estar_mpa)?;
         positive("--kappa-over-g", self.kappa_over_g)?;
@@ -52,7 +63,7 @@ impl SolveArgs {
         non_negative("--mu", self.mu)?;
         let x = self.until_a_over_lambda;
         if !(x.is_finite() && x > 0.0 && x < 0.5) {
-            return Err(out_of_range("--until-a-over-lambda", x, "(0, 0.5)"));
+            return Err(out_of_range("--until-a-over-lambda", x, "(0, 0.5)").into());
         }
         let physics = FePhysics {
             estar_mpa: self.estar_mpa,
@@ -62,9 +73,13 @@ impl SolveArgs {
             elastic_slip_over_element: defaults::elastic_slip_over_element(),
             kinematics: self.kinematics,
         };
+        let mesh = match self.tolerance {
+            Some(t) => super::tolerance::solve_mesh(t, self.ar, self.tau_max_mpa, &physics, x)?,
+            None => self.mesh,
+        };
         let options = SolveOptions {
             until_a_over_lambda: x,
-            mesh: self.mesh,
+            mesh,
             ..SolveOptions::default()
         };
         let case = FeCase::new(&physics, self.ar, self.tau_max_mpa, options);
@@ -84,7 +99,48 @@ pub fn solve(args: &SolveArgs, out: &mut impl Write) -> Result<ExitCode> {
         );
         b
     });
-    writeln!(out, "{}", CurvePoint::CSV_HEADER)?;
+    // the Richardson estimate needs the next coarser curve first
+    let coarse = match args.error_estimate {
+        false => None,
+        true => {
+            let (level, ratio) =
+                wavy::accuracy::coarser_level(opts.mesh).ok_or_else(|| InputError::Refused {
+                    flag: "--error-estimate".into(),
+                    value: format!("{:?}", opts.mesh),
+                    reason: "no coarser mesh of at least 4 elements along the face".into(),
+                })?;
+            let order = wavy::accuracy::measured::committed()?.fe_order()?;
+            if let Some(b) = &bar {
+                b.set_message("the coarser mesh of the error estimate");
+            }
+            let coarse_opts = SolveOptions {
+                mesh: level,
+                ..opts
+            };
+            let curve = fe::solve_curve(&problem, &coarse_opts, &mut |_| {}).map_err(|f| {
+                let reached = f.points.last().map_or(0.0, |p| p.a_over_lambda);
+                anyhow::anyhow!(
+                    "the error estimate needs the curve on the coarser mesh {}×{}, which stops at a/λ = {reached:.4}: {}; choose a finer --mesh",
+                    level.counts().0,
+                    level.counts().1,
+                    f.error
+                )
+            })?;
+            Some((curve.points, ratio, order))
+        }
+    };
+    let estimate = |p: &CurvePoint| -> String {
+        coarse.as_ref().map_or(String::new(), |(c, ratio, order)| {
+            let e = wavy::accuracy::error_estimates(std::slice::from_ref(p), c, *ratio, *order)[0];
+            format!(",{}", e.map_or(String::new(), |e| e.to_string()))
+        })
+    };
+    let header_extra = if coarse.is_some() {
+        ",error_estimate"
+    } else {
+        ""
+    };
+    writeln!(out, "{}{header_extra}", CurvePoint::CSV_HEADER)?;
     let mut write_error = None;
     let result = fe::solve_curve(&problem, &opts, &mut |p| {
         if let Some(b) = &bar {
@@ -95,7 +151,7 @@ pub fn solve(args: &SolveArgs, out: &mut impl Write) -> Result<ExitCode> {
             b.tick();
         }
         if write_error.is_none() {
-            if let Err(e) = writeln!(out, "{}", p.csv_row()) {
+            if let Err(e) = writeln!(out, "{}{}", p.csv_row(), estimate(p)) {
                 write_error = Some(e);
             }
         }

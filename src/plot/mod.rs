@@ -158,6 +158,9 @@ pub struct Panel {
     /// Lines of text drawn in the lower right corner inside the plotting area.
     pub notes: Vec<String>,
     pub legend: Option<LegendPosition>,
+    /// Whether the x and y axes are logarithmic (base 10). Points and ranges stay in data units
+    /// (every value on a log axis must be positive); ticks are labelled in data units.
+    pub log_scale: (bool, bool),
 }
 
 /// A figure: a caption, a `rows × cols` grid of panels (row-major) and footer lines.
@@ -246,6 +249,50 @@ pub fn render_svg(figure: &Figure) -> Result<String, PlotError> {
     Ok(svg)
 }
 
+/// Tick labels of an axis: six on a linear axis; on a logarithmic one (range in log₁₀) one per
+/// decade, so that every tick is a power of ten.
+fn label_count(log: bool, range: (f64, f64)) -> usize {
+    if log {
+        ((range.1 - range.0).round() as usize + 1).max(2)
+    } else {
+        6
+    }
+}
+
+/// The panel with log₁₀ of every value on a logarithmic axis (plotters draws it on a linear
+/// axis whose ticks [`draw_panel`] labels in data units); an error names a value that has no
+/// logarithm.
+fn to_log_coordinates(panel: &Panel) -> Result<Panel, PlotError> {
+    let (log_x, log_y) = panel.log_scale;
+    let log = |on: bool, v: f64, axis: &str| -> Result<f64, PlotError> {
+        if !on {
+            Ok(v)
+        } else if v > 0.0 && v.is_finite() {
+            Ok(v.log10())
+        } else {
+            Err(PlotError(format!(
+                "panel `{}`: {axis} value {v} on a logarithmic axis",
+                panel.title
+            )))
+        }
+    };
+    let point = |&(x, y): &(f64, f64)| Ok((log(log_x, x, "x")?, log(log_y, y, "y")?));
+    let mut out = panel.clone();
+    out.x_range = (
+        log(log_x, panel.x_range.0, "x")?,
+        log(log_x, panel.x_range.1, "x")?,
+    );
+    out.y_range = (
+        log(log_y, panel.y_range.0, "y")?,
+        log(log_y, panel.y_range.1, "y")?,
+    );
+    for s in &mut out.series {
+        s.points = s.points.iter().map(point).collect::<Result<_, _>>()?;
+        s.upper = s.upper.iter().map(point).collect::<Result<_, _>>()?;
+    }
+    Ok(out)
+}
+
 /// A tick label: at most four significant digits, no trailing zeros, never `-0`.
 /// Tick label: four significant digits; a tick at round-off distance from zero (plotters
 /// places ticks by adding steps, so the zero tick can come out as −1.1e-16) reads 0.
@@ -262,6 +309,10 @@ fn draw_panel(
     panel: &Panel,
     fs: u32,
 ) -> Result<(), PlotError> {
+    let panel = &to_log_coordinates(panel)?;
+    let (log_x, log_y) = panel.log_scale;
+    let x_tick = move |v: &f64| tick(if log_x { 10f64.powf(*v) } else { *v });
+    let y_tick = move |v: &f64| tick(if log_y { 10f64.powf(*v) } else { *v });
     let mut chart = ChartBuilder::on(area)
         .caption(&panel.title, (FONT, fs + 2).into_font())
         .margin(8)
@@ -281,10 +332,10 @@ fn draw_panel(
         .axis_desc_style((FONT, fs).into_font())
         .light_line_style(RGBColor(235, 235, 235))
         .bold_line_style(RGBColor(215, 215, 215))
-        .x_labels(6)
-        .y_labels(6)
-        .x_label_formatter(&|v| tick(*v))
-        .y_label_formatter(&|v| tick(*v))
+        .x_labels(label_count(log_x, panel.x_range))
+        .y_labels(label_count(log_y, panel.y_range))
+        .x_label_formatter(&x_tick)
+        .y_label_formatter(&y_tick)
         .draw()
         .map_err(err)?;
 

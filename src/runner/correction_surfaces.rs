@@ -157,6 +157,7 @@ fn run(title: &str, s: &CorrectionSurfacesScene) -> Result<SceneResult> {
             y_range: y_tau,
             series: vs_tau,
             notes: vec![],
+            log_scale: (false, false),
             legend: Some(LegendPosition::LowerLeft),
         });
         panels.push(Panel {
@@ -167,6 +168,7 @@ fn run(title: &str, s: &CorrectionSurfacesScene) -> Result<SceneResult> {
             y_range: y_ar,
             series: vs_ar,
             notes: vec![],
+            log_scale: (false, false),
             legend: Some(LegendPosition::LowerLeft),
         });
     }

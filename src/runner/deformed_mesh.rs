@@ -28,7 +28,7 @@ impl Scene for DeformedMeshScene {
     }
 
     fn validate(&self, v: &Validator) -> Result<(), SpecError> {
-        v.fe_section("deformed_mesh.fe", &self.fe, None)?;
+        v.fe_section("deformed_mesh.fe", &self.fe, None, &[self.aspect_ratio.get()])?;
         if self.fe.tau_max_mpa.len() != 1 {
             return Err(v.invalid(
                 "deformed_mesh.fe.tau_max_mpa",
@@ -48,7 +48,7 @@ fn run(title: &str, s: &DeformedMeshScene, opts: &RunOptions) -> Result<SceneRes
         &FePhysics::from(&s.fe),
         ar,
         tau,
-        s.fe.options(opts.fe_mesh_override),
+        s.fe.options(&[ar], opts.fe_mesh_override),
     );
     let curve = fe::solve_curve(&case.problem, &case.options, &mut |_| {})
         .map_err(|f| anyhow!("the FE solve for the deformed mesh stopped: {}", f.error))?;
@@ -118,6 +118,7 @@ fn run(title: &str, s: &DeformedMeshScene, opts: &RunOptions) -> Result<SceneRes
         y_range: (y_lo, y_lo + 0.75),
         series: mesh_series,
         notes: vec![],
+        log_scale: (false, false),
         legend: Some(LegendPosition::UpperRight),
     };
 
@@ -151,6 +152,7 @@ fn run(title: &str, s: &DeformedMeshScene, opts: &RunOptions) -> Result<SceneRes
             ),
         ],
         notes: vec![],
+        log_scale: (false, false),
         legend: Some(LegendPosition::UpperRight),
     };
     let (nx, ny) = case.options.mesh.counts();

@@ -16,11 +16,26 @@ pub fn section_cases(fe: &FeSection, aspect_ratios: &[f64], opts: &RunOptions) -
                 &FePhysics::from(fe),
                 ar,
                 tau,
-                fe.options(opts.fe_mesh_override),
+                fe.options(aspect_ratios, opts.fe_mesh_override),
             ));
         }
     }
     cases
+}
+
+/// The cases of the error estimates of `cases`: each on the next coarser mesh
+/// (`crate::accuracy::coarser_level`), with the ratio of the element counts; `None` for a mesh
+/// with no coarser level.
+pub fn coarser_cases(cases: &[FeCase]) -> Vec<Option<(FeCase, f64)>> {
+    cases
+        .iter()
+        .map(|c| {
+            let (mesh, ratio) = crate::accuracy::coarser_level(c.options.mesh)?;
+            let mut coarse = c.clone();
+            coarse.options.mesh = mesh;
+            Some((coarse, ratio))
+        })
+        .collect()
 }
 
 /// Every case's curve, from the cache or computed (in parallel, whatever the run's shard).
@@ -63,6 +78,21 @@ pub struct FePhysics {
     pub kinematics: Kinematics,
 }
 
+impl Default for FePhysics {
+    /// Every parameter at its default (`crate::defaults`), finite kinematics.
+    fn default() -> Self {
+        use crate::defaults;
+        FePhysics {
+            estar_mpa: defaults::fe_estar_mpa(),
+            thickness_over_lambda: defaults::thickness_over_lambda(),
+            kappa_over_g: defaults::kappa_over_g(),
+            friction_coefficient: defaults::friction_coefficient(),
+            elastic_slip_over_element: defaults::elastic_slip_over_element(),
+            kinematics: Kinematics::Finite,
+        }
+    }
+}
+
 impl From<&FeSection> for FePhysics {
     fn from(fe: &FeSection) -> Self {
         FePhysics {
@@ -77,11 +107,19 @@ impl From<&FeSection> for FePhysics {
 }
 
 impl FeSection {
-    /// The solver options of this section, at `mesh_override` when a run sets one.
-    pub fn options(&self, mesh_override: Option<MeshLevel>) -> SolveOptions {
+    /// The solver options of this section's curves at `aspect_ratios` (its mesh, or the mesh its
+    /// tolerance needs there), at `mesh_override` when a run sets one.
+    ///
+    /// # Panics
+    /// When the tolerance cannot be met: `Validator::fe_section` refuses such a spec.
+    pub fn options(&self, aspect_ratios: &[f64], mesh_override: Option<MeshLevel>) -> SolveOptions {
+        let mesh = mesh_override.unwrap_or_else(|| {
+            self.mesh_for(aspect_ratios)
+                .expect("a validated FE section's tolerance has a mesh")
+        });
         SolveOptions {
             until_a_over_lambda: self.until_a_over_lambda.get(),
-            mesh: mesh_override.unwrap_or(self.mesh),
+            mesh,
             ..SolveOptions::default()
         }
     }

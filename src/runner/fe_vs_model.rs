@@ -30,11 +30,17 @@ pub struct FeVsModelScene {
 }
 
 impl Scene for FeVsModelScene {
-    /// One case per (τ_max, AR) of the FE section, τ_max outer.
+    /// One case per (τ_max, AR) of the FE section, τ_max outer; with `error_estimate`, then
+    /// each of them on the next coarser mesh.
     fn fe_cases(&self, opts: &RunOptions) -> Vec<FeCase> {
         let Some(fe) = &self.fe else { return vec![] };
         let ars: Vec<f64> = self.aspect_ratios.iter().map(|a| a.get()).collect();
-        fe_cases::section_cases(fe, &ars, opts)
+        let mut cases = fe_cases::section_cases(fe, &ars, opts);
+        if fe.error_estimate {
+            let coarse = fe_cases::coarser_cases(&cases);
+            cases.extend(coarse.into_iter().flatten().map(|(c, _)| c));
+        }
+        cases
     }
 
     fn run(&self, ctx: &SceneContext) -> Result<SceneResult> {
@@ -53,7 +59,8 @@ impl Scene for FeVsModelScene {
         v.models("fe_vs_model.models", &self.models)?;
         if let Some(fe) = &self.fe {
             let panels: Vec<f64> = self.tau_max_mpa.iter().map(|t| t.get()).collect();
-            v.fe_section("fe_vs_model.fe", fe, Some(&panels))?;
+            let ars: Vec<f64> = self.aspect_ratios.iter().map(|a| a.get()).collect();
+            v.fe_section("fe_vs_model.fe", fe, Some(&panels), &ars)?;
         }
         Ok(())
     }
@@ -74,12 +81,46 @@ fn run(title: &str, s: &FeVsModelScene, opts: &RunOptions) -> Result<SceneResult
     let ars: Vec<f64> = s.aspect_ratios.iter().map(|v| v.get()).collect();
     let taus: Vec<f64> = s.tau_max_mpa.iter().map(|v| v.get()).collect();
 
-    let cases = s.fe_cases(opts);
-    let outcomes = fe_cases::solve_all(&cases, opts)?;
+    let all_cases = s.fe_cases(opts);
+    let all_outcomes = fe_cases::solve_all(&all_cases, opts)?;
+    // the section's own curves come first; the error estimates' coarser curves after them
+    let n_main = s
+        .fe
+        .as_ref()
+        .map_or(0, |fe| fe.tau_max_mpa.len() * ars.len());
+    let (cases, outcomes) = (&all_cases[..n_main], &all_outcomes[..n_main]);
+    let estimates: Vec<Option<Vec<Option<f64>>>> = match &s.fe {
+        Some(fe) if fe.error_estimate => {
+            let order = crate::accuracy::measured::committed()?.fe_order()?;
+            let coarse = fe_cases::coarser_cases(cases);
+            coarse
+                .iter()
+                .zip(outcomes)
+                .zip(&all_outcomes[n_main..])
+                .map(|((c, fine), coarse)| {
+                    let (_, ratio) = c.as_ref()?;
+                    Some(crate::accuracy::error_estimates(
+                        &fine.points,
+                        &coarse.points,
+                        *ratio,
+                        order,
+                    ))
+                })
+                .collect()
+        }
+        _ => vec![None; n_main],
+    };
+    let estimate_at = |ar: f64, tau: f64| -> Option<&Vec<Option<f64>>> {
+        cases
+            .iter()
+            .zip(&estimates)
+            .find(|(c, _)| c.problem.aspect_ratio == ar && c.tau_max_mpa == tau)
+            .and_then(|(_, e)| e.as_ref())
+    };
     let fe_at = |ar: f64, tau: f64| -> Option<&FeOutcome> {
         cases
             .iter()
-            .zip(&outcomes)
+            .zip(outcomes)
             .find(|(c, _)| c.problem.aspect_ratio == ar && c.tau_max_mpa == tau)
             .map(|(_, r)| r)
     };
@@ -104,16 +145,18 @@ fn run(title: &str, s: &FeVsModelScene, opts: &RunOptions) -> Result<SceneResult
     }
     header.push("wnl_extrapolated");
     let mut table = Table::new("", &header);
-    let mut fe_points = Table::new(
-        "fe_points",
-        &[
-            "aspect_ratio",
-            "tau_max_mpa",
-            "a_over_lambda",
-            "p_over_estar",
-            "p_over_estar_reaction",
-        ],
-    );
+    let with_estimates = s.fe.as_ref().is_some_and(|fe| fe.error_estimate);
+    let mut fe_points_header = vec![
+        "aspect_ratio",
+        "tau_max_mpa",
+        "a_over_lambda",
+        "p_over_estar",
+        "p_over_estar_reaction",
+    ];
+    if with_estimates {
+        fe_points_header.push("error_estimate");
+    }
+    let mut fe_points = Table::new("fe_points", &fe_points_header);
     let mut mse_header = vec![
         "aspect_ratio".to_string(),
         "tau_max_mpa".into(),
@@ -171,14 +214,38 @@ fn run(title: &str, s: &FeVsModelScene, opts: &RunOptions) -> Result<SceneResult
             let mut panel_notes = vec![];
             let fe = fe_at(ar, tau);
             if let Some(fe) = fe {
-                for p in &fe.points {
-                    fe_points.push(vec![
+                let estimates = estimate_at(ar, tau);
+                for (i, p) in fe.points.iter().enumerate() {
+                    let mut row: Vec<Cell> = vec![
                         ar.into(),
                         tau.into(),
                         p.a_over_lambda.into(),
                         p.p_over_estar.into(),
                         p.p_over_estar_reaction.into(),
-                    ]);
+                    ];
+                    if with_estimates {
+                        row.push(estimates.and_then(|e| e[i]).into());
+                    }
+                    fe_points.push(row);
+                }
+                if with_estimates {
+                    // the largest estimate from a/λ = 0.05 on (fewer than three contact
+                    // elements below, where a relative error says little)
+                    let largest = estimates.and_then(|e| {
+                        fe.points
+                            .iter()
+                            .zip(e)
+                            .filter(|(p, _)| p.a_over_lambda >= 0.05)
+                            .filter_map(|(_, e)| *e)
+                            .reduce(f64::max)
+                    });
+                    panel_notes.push(match largest {
+                        Some(e) => format!(
+                            "FE error ≤ {} (Richardson)",
+                            crate::accuracy::measured::percent(e)
+                        ),
+                        None => "FE error: no estimate (coarser curve missing)".into(),
+                    });
                 }
                 let pts = fe
                     .points
@@ -257,6 +324,7 @@ fn run(title: &str, s: &FeVsModelScene, opts: &RunOptions) -> Result<SceneResult
                 y_range: y,
                 series,
                 notes: panel_notes,
+                log_scale: (false, false),
                 legend: Some(LegendPosition::UpperLeft),
             });
         }

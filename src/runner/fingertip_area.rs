@@ -287,6 +287,7 @@ fn run(title: &str, s: &FingertipAreaScene, spec_dir: &Path) -> Result<SceneResu
         y_range: (0.0, y.1),
         series,
         notes: vec![],
+        log_scale: (false, false),
         legend: Some(LegendPosition::LowerRight),
     };
     let figure = Figure {

@@ -11,6 +11,7 @@ pub mod fe_cases;
 pub mod measured;
 pub mod review;
 pub mod sweep;
+pub mod tier_timings;
 
 // The one list of scenes: `module::SectionType`, one line each (see `scenes`).
 scene_registry! {
@@ -19,6 +20,7 @@ scene_registry! {
     fingertip_area::FingertipAreaScene,
     deformed_mesh::DeformedMeshScene,
     table1_refit::Table1RefitScene,
+    speed_accuracy::SpeedAccuracyScene,
 }
 
 pub use atomic_write::write_atomic;

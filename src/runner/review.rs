@@ -5,7 +5,7 @@
 //! Tables carry no layout of their own, so the columns are read by role, in one place
 //! ([`ColumnRoles`]): the abscissa of a curve (`a_over_lambda`, `load_n`, `x_over_lambda`; else
 //! `tau_max_mpa` for the correction surfaces A and B), the keys that name a
-//! panel or series (`aspect_ratio`, `tau_max_mpa`, `model`, `estar_mpa`, `reading`,
+//! panel or series (`tier`, `aspect_ratio`, `tau_max_mpa`, `model`, `estar_mpa`, `reading`,
 //! `coefficient`), identifiers (`node`), and values (every other column). Values of a curve are
 //! compared at the same abscissa, the base interpolated linearly to the new one's points
 //! (FE points move along a/λ when the physics changes); values of a table without abscissa
@@ -19,7 +19,8 @@ use std::fmt::Write;
 /// Columns that are the abscissa of a curve, in order of preference.
 const ABSCISSAE: [&str; 3] = ["a_over_lambda", "load_n", "x_over_lambda"];
 /// Columns that name a panel or a series.
-const KEYS: [&str; 6] = [
+const KEYS: [&str; 7] = [
+    "tier",
     "aspect_ratio",
     "tau_max_mpa",
     "model",
@@ -473,6 +474,7 @@ pub fn overlay(stem: &str, tables: &[(String, CsvTable, CsvTable, TableChange)])
                         "largest rel. change {}",
                         numfmt::sig_digits(rel, 2)
                     )],
+                    log_scale: (false, false),
                     legend: Some(LegendPosition::UpperLeft),
                 }
             },

@@ -44,7 +44,8 @@ impl Scene for Table1RefitScene {
             self.aspect_ratios.iter().map(|a| a.get()),
             3,
         )?;
-        v.fe_section("table1_refit.fe", &self.fe, None)?;
+        let ars: Vec<f64> = self.aspect_ratios.iter().map(|a| a.get()).collect();
+        v.fe_section("table1_refit.fe", &self.fe, None, &ars)?;
         v.at_least(
             "table1_refit.fe.tau_max_mpa",
             self.fe.tau_max_mpa.iter().map(|t| t.get()),
@@ -217,6 +218,7 @@ fn run(title: &str, s: &Table1RefitScene, opts: &RunOptions) -> Result<SceneResu
                     format!("MSE paper {}", crate::numfmt::sig_digits(f.paper_mse, 2)),
                 ],
                 // A falls with τ_max and AR, B rises: keep the legend off the lines
+                log_scale: (false, false),
                 legend: Some(if correction == Correction::A {
                     LegendPosition::LowerLeft
                 } else {

@@ -1,0 +1,314 @@
+//! Accuracy tiers: every way wavy answers p̄/E*(a/λ), from Westergaard's closed form to the
+//! finite-strain FE on a fine mesh, and how their errors are measured.
+//!
+//! The errors are relative to a converged reference: the Richardson extrapolation of the two
+//! finest finite-strain meshes, `R = f_f + (f_f − f_c) / (ρ^q − 1)` with `ρ` the ratio of their
+//! element counts and `q` the order observed on three meshes refined by that ratio
+//! (docs/replication.md R11). The `speed_accuracy` scene measures every tier this way;
+//! [`measured`] holds the committed measurements and picks the cheapest tier that meets a
+//! tolerance.
+
+pub mod measured;
+
+use crate::fe::convergence::p_at;
+use crate::fe::{CurvePoint, Kinematics, MeshLevel};
+use crate::models::{CoefficientSet, ModelKind, ModelLaw, Reading};
+use std::fmt;
+use std::str::FromStr;
+
+/// One way of computing p̄/E*(a/λ).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Tier {
+    /// Westergaard's linear, frictionless solution.
+    Westergaard,
+    /// The WNL law with a coefficient set, in the reading that set belongs to
+    /// ([`Tier::reading`]).
+    Wnl(CoefficientSet),
+    /// Our finite-element solver with `elements_along_face` elements along the contact face
+    /// (half as many across the thickness).
+    Fe {
+        kinematics: Kinematics,
+        elements_along_face: usize,
+    },
+}
+
+impl Tier {
+    /// The name used in tables, specs and messages: `westergaard`, `wnl-paper-table1`,
+    /// `wnl-ours-bracket-sq`, `fe-finite-48`, `fe-linear-48`, ….
+    pub fn name(&self) -> String {
+        match self {
+            Tier::Westergaard => "westergaard".into(),
+            Tier::Wnl(set) => format!("wnl-{}", set.name()),
+            Tier::Fe {
+                kinematics,
+                elements_along_face,
+            } => format!("fe-{}-{elements_along_face}", kinematics.name()),
+        }
+    }
+
+    /// True for the closed-form laws (cost per point, no mesh).
+    pub fn is_closed_form(&self) -> bool {
+        !matches!(self, Tier::Fe { .. })
+    }
+
+    /// The mesh of an FE tier.
+    pub fn mesh(&self) -> Option<MeshLevel> {
+        match *self {
+            Tier::Fe {
+                elements_along_face: nx,
+                ..
+            } => Some(MeshLevel::Elements {
+                nx,
+                ny: (nx / 2).max(2),
+            }),
+            _ => None,
+        }
+    }
+
+    /// The reading of Eq. 4 a WNL tier uses: a refit set's own reading, the default reading
+    /// for the paper's Table 1.
+    pub fn reading(&self) -> Reading {
+        match self {
+            Tier::Wnl(CoefficientSet::OursBracket2x) => Reading::Bracket2x,
+            Tier::Wnl(CoefficientSet::OursLiteral) => Reading::Literal,
+            _ => Reading::default(),
+        }
+    }
+
+    /// The closed-form law of this tier at (AR, τ_max in MPa); `None` for an FE tier.
+    pub fn law(&self, aspect_ratio: f64, tau_max_mpa: f64) -> Option<ModelLaw> {
+        let (kind, set) = match *self {
+            Tier::Westergaard => (ModelKind::Westergaard, CoefficientSet::default()),
+            Tier::Wnl(set) => (ModelKind::Wnl, set),
+            Tier::Fe { .. } => return None,
+        };
+        Some(ModelLaw::new(
+            kind,
+            aspect_ratio,
+            tau_max_mpa,
+            self.reading(),
+            set,
+        ))
+    }
+}
+
+impl fmt::Display for Tier {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.name())
+    }
+}
+
+/// A name that is not a tier.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("value \"{0}\" is not a tier; allowed: westergaard, wnl-<coefficient set> ({sets}), fe-finite-N or fe-linear-N (N elements along the face, {lo} to {hi})", sets = CoefficientSet::names(), lo = MeshLevel::ELEMENTS_ALONG_FACE.start(), hi = MeshLevel::ELEMENTS_ALONG_FACE.end())]
+pub struct TierParseError(pub String);
+
+impl FromStr for Tier {
+    type Err = TierParseError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let bad = || TierParseError(s.into());
+        if s == "westergaard" {
+            return Ok(Tier::Westergaard);
+        }
+        if let Some(set) = s.strip_prefix("wnl-") {
+            return set.parse().map(Tier::Wnl).map_err(|_| bad());
+        }
+        let rest = s.strip_prefix("fe-").ok_or_else(bad)?;
+        let (kinematics, n) = rest.rsplit_once('-').ok_or_else(bad)?;
+        let kinematics: Kinematics = kinematics.parse().map_err(|_| bad())?;
+        let elements_along_face: usize = n.parse().map_err(|_| bad())?;
+        if !MeshLevel::ELEMENTS_ALONG_FACE.contains(&elements_along_face) {
+            return Err(bad());
+        }
+        Ok(Tier::Fe {
+            kinematics,
+            elements_along_face,
+        })
+    }
+}
+
+/// The largest and the root-mean-square relative error of a curve against a reference.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ErrorSummary {
+    /// max |f − R| / R.
+    pub max: f64,
+    /// √(mean of ((f − R) / R)²).
+    pub rms: f64,
+}
+
+/// The relative errors of `values` against `reference` (same abscissae, reference > 0).
+///
+/// # Panics
+/// When the two slices differ in length or are empty.
+pub fn relative_errors(values: &[f64], reference: &[f64]) -> ErrorSummary {
+    assert!(
+        !values.is_empty() && values.len() == reference.len(),
+        "one value per reference point"
+    );
+    let (mut max, mut sq) = (0.0f64, 0.0);
+    for (v, r) in values.iter().zip(reference) {
+        let e = ((v - r) / r).abs();
+        max = max.max(e);
+        sq += e * e;
+    }
+    ErrorSummary {
+        max,
+        rms: (sq / values.len() as f64).sqrt(),
+    }
+}
+
+/// Richardson extrapolation from a coarse and a fine value, meshes refined by `ratio`, error
+/// of order `order`: `fine + (fine − coarse) / (ratio^order − 1)`.
+pub fn richardson(coarse: f64, fine: f64, ratio: f64, order: f64) -> f64 {
+    fine + (fine - coarse) / (ratio.powf(order) - 1.0)
+}
+
+/// The Richardson estimate of the relative error of `fine`: `|fine − coarse| / (ratio^order − 1)
+/// / fine`.
+pub fn richardson_relative_error(coarse: f64, fine: f64, ratio: f64, order: f64) -> f64 {
+    ((fine - coarse) / (ratio.powf(order) - 1.0) / fine).abs()
+}
+
+/// The mesh one refinement step coarser than `mesh` (the named levels step by
+/// [`MeshLevel::REFINEMENT_RATIO`]; `N` elements along the face step to `round(N / 1.5)`), and
+/// the ratio of their element counts along the face; `None` below 4 elements.
+pub fn coarser_level(mesh: MeshLevel) -> Option<(MeshLevel, f64)> {
+    let coarser = match mesh {
+        MeshLevel::Fine => MeshLevel::Default,
+        MeshLevel::Default => MeshLevel::Coarse,
+        level => {
+            let nx = (level.counts().0 as f64 / MeshLevel::REFINEMENT_RATIO).round() as usize;
+            if nx < *MeshLevel::ELEMENTS_ALONG_FACE.start() {
+                return None;
+            }
+            MeshLevel::Elements {
+                nx,
+                ny: (nx / 2).max(2),
+            }
+        }
+    };
+    Some((coarser, mesh.counts().0 as f64 / coarser.counts().0 as f64))
+}
+
+/// The Richardson estimate of the relative error of each point of `fine`, from the curve on a
+/// mesh `ratio` times coarser and the convergence `order`: `|p − p_c(a)| / (ratio^order − 1) / p`
+/// with `p_c` interpolated at the point's a/λ ([`p_at`]); `None` where the coarse curve does
+/// not reach (below its first contact point).
+pub fn error_estimates(
+    fine: &[CurvePoint],
+    coarse: &[CurvePoint],
+    ratio: f64,
+    order: f64,
+) -> Vec<Option<f64>> {
+    fine.iter()
+        .map(|p| {
+            let c = p_at(coarse, p.a_over_lambda)?;
+            Some(((p.p_over_estar - c) / (ratio.powf(order) - 1.0) / p.p_over_estar).abs())
+        })
+        .collect()
+}
+
+/// The formal orders of the FE error (the contact-edge location, first order, and the Q1 load
+/// at a fixed displacement, second order): an observed order is limited to this range before it
+/// extrapolates (see `fe::convergence`).
+pub const FORMAL_ORDER_RANGE: (f64, f64) = (1.0, 2.0);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tier_names_round_trip() {
+        let tiers = [
+            Tier::Westergaard,
+            Tier::Wnl(CoefficientSet::PaperTable1),
+            Tier::Wnl(CoefficientSet::OursBracketSq),
+            Tier::Fe {
+                kinematics: Kinematics::Finite,
+                elements_along_face: 144,
+            },
+            Tier::Fe {
+                kinematics: Kinematics::Linear,
+                elements_along_face: 48,
+            },
+        ];
+        for t in tiers {
+            assert_eq!(t.name().parse::<Tier>(), Ok(t));
+        }
+        for bad in [
+            "",
+            "wnl",
+            "wnl-x",
+            "fe-finite",
+            "fe-finite-3",
+            "fe-plastic-48",
+            "fe-finite-x",
+        ] {
+            assert!(bad.parse::<Tier>().is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn richardson_removes_a_pure_power_error() {
+        // f(h) = 2 + 3 h^1.5 on h = 1/64 and 1/96 extrapolates to 2 exactly.
+        let f = |n: f64| 2.0 + 3.0 * (1.0 / n).powf(1.5);
+        let r = richardson(f(64.0), f(96.0), 1.5, 1.5);
+        assert!((r - 2.0).abs() < 1e-14, "{r}");
+        let e = richardson_relative_error(f(64.0), f(96.0), 1.5, 1.5);
+        assert!((e - (f(96.0) - 2.0) / f(96.0)).abs() < 1e-14);
+    }
+
+    #[test]
+    fn coarser_levels_step_by_one_and_a_half() {
+        assert_eq!(
+            coarser_level(MeshLevel::Fine),
+            Some((MeshLevel::Default, 1.5))
+        );
+        assert_eq!(
+            coarser_level(MeshLevel::Default),
+            Some((MeshLevel::Coarse, 1.5))
+        );
+        let (m, r) = coarser_level(MeshLevel::Elements { nx: 144, ny: 72 }).unwrap();
+        assert_eq!((m, r), (MeshLevel::Elements { nx: 96, ny: 48 }, 1.5));
+        assert_eq!(coarser_level(MeshLevel::Elements { nx: 5, ny: 2 }), None);
+    }
+
+    #[test]
+    fn error_estimates_recover_a_known_error() {
+        // p(a) = a² exactly on the coarse mesh, 1 % high on the fine: with ratio 2 and order 1
+        // the fine error estimate is |Δ| / (2 − 1) / p = 1/101 of the fine value everywhere
+        let curve = |scale: f64| -> Vec<CurvePoint> {
+            (1..=20)
+                .map(|i| {
+                    let a = 0.02 * i as f64;
+                    CurvePoint {
+                        a_over_lambda: a,
+                        p_over_estar: scale * a * a,
+                        p_over_estar_reaction: scale * a * a,
+                        slab_displacement_over_lambda: 0.0,
+                        newton_iterations: 1,
+                        active_nodes: i,
+                    }
+                })
+                .collect()
+        };
+        let (fine, coarse) = (curve(1.01), curve(1.0));
+        let e = error_estimates(&fine[5..], &coarse[2..], 2.0, 1.0);
+        assert!(
+            e.iter().all(|e| (e.unwrap() - 0.01 / 1.01).abs() < 1e-9),
+            "{e:?}"
+        );
+        // below the coarse curve's first point there is no estimate
+        assert_eq!(
+            error_estimates(&fine[..1], &coarse[2..], 2.0, 1.0),
+            vec![None]
+        );
+    }
+
+    #[test]
+    fn relative_errors_are_max_and_rms() {
+        let e = relative_errors(&[1.1, 2.0, 2.7], &[1.0, 2.0, 3.0]);
+        assert!((e.max - 0.1).abs() < 1e-12);
+        assert!((e.rms - (0.02f64 / 3.0).sqrt()).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,644 @@
+//! The speed–accuracy trade: for each (AR, τ_max), every tier that answers p̄/E*(a/λ) —
+//! Westergaard, WNL with a coefficient set, linear FE, finite-strain FE at several meshes — with
+//! its error against a converged reference and its cost.
+//!
+//! The reference is the Richardson extrapolation of the two finest finite-strain meshes
+//! (`reference_meshes`, refined by ρ = fine/coarse), with the order observed on those two and
+//! the mesh ρ times coarser (docs/replication.md R11). The errors are computed here; the wall
+//! times come from `timings` (measured data, written by `wavy time-tiers`: a figure that
+//! recomputed times would differ on every run).
+
+use super::fe_cases::{self, FeCase, FeOutcome, FePhysics};
+use super::scenes::{Scene, SceneContext, SceneResult};
+use super::tier_timings::{self, Timings};
+use super::RunOptions;
+use crate::accuracy::{self, relative_errors, richardson, Tier, FORMAL_ORDER_RANGE};
+use crate::fe::{convergence, Kinematics, MeshLevel};
+use crate::models::PressureLaw;
+use crate::plot::{palette, Figure, LegendPosition, Panel, Series};
+use crate::spec::{Bounded, FeSection, Grid, Positive, SpecError, Validator};
+use crate::table::Table;
+use anyhow::{bail, Context, Result};
+use serde::{de, Deserialize, Deserializer};
+
+/// The `[speed_accuracy]` section.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpeedAccuracyScene {
+    /// Aspect ratios Δ/λ of the measured cases (figure rows).
+    pub aspect_ratios: Vec<Bounded<Positive>>,
+    /// Where the errors are taken, a/λ.
+    pub a_over_lambda: Grid,
+    /// Edges of the a/λ bands whose largest errors are reported separately (increasing, from
+    /// the first to the last value of `a_over_lambda`): the FE error is largest at small a/λ, and a
+    /// tolerance asked at larger a/λ is judged by its own band.
+    pub error_bands: Vec<f64>,
+    /// The tiers measured, by name (`westergaard`, `wnl-<set>`, `fe-finite-N`, `fe-linear-N`).
+    #[serde(deserialize_with = "tiers_from_names")]
+    pub tiers: Vec<Tier>,
+    /// Elements along the face of the two finest finite-strain meshes, coarse then fine: the
+    /// Richardson reference.
+    pub reference_meshes: [usize; 2],
+    /// The measured wall times, relative to the spec's folder.
+    pub timings: String,
+    /// The cases' τ_max (MPa, figure columns), their physics (defaults of docs/replication.md
+    /// R7) and the target a/λ of every FE curve. The meshes are the tiers'; `mesh` is not used.
+    pub fe: FeSection,
+}
+
+fn tiers_from_names<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Tier>, D::Error> {
+    Vec::<String>::deserialize(d)?
+        .iter()
+        .map(|s| s.parse::<Tier>().map_err(de::Error::custom))
+        .collect()
+}
+
+/// The FE mesh of `nx` elements along the face, as the tiers name it.
+fn mesh(nx: usize) -> MeshLevel {
+    Tier::Fe {
+        kinematics: Kinematics::Finite,
+        elements_along_face: nx,
+    }
+    .mesh()
+    .expect("an FE tier has a mesh")
+}
+
+impl SpeedAccuracyScene {
+    fn ars(&self) -> Vec<f64> {
+        self.aspect_ratios.iter().map(|a| a.get()).collect()
+    }
+    fn taus(&self) -> Vec<f64> {
+        self.fe.tau_max_mpa.iter().map(|t| t.get()).collect()
+    }
+
+    /// The three meshes of the observed order, coarse to fine (ratio ρ each).
+    pub fn order_meshes(&self) -> [usize; 3] {
+        let [c, f] = self.reference_meshes;
+        [c * c / f, c, f]
+    }
+
+    fn ratio(&self) -> f64 {
+        self.reference_meshes[1] as f64 / self.reference_meshes[0] as f64
+    }
+
+    /// The FE case of an FE tier (or a reference mesh) at (AR, τ_max in MPa).
+    pub fn case(&self, kinematics: Kinematics, nx: usize, ar: f64, tau: f64) -> FeCase {
+        let physics = FePhysics {
+            kinematics,
+            ..FePhysics::from(&self.fe)
+        };
+        let options = crate::fe::SolveOptions {
+            mesh: mesh(nx),
+            ..self.fe.options(&[ar], Some(mesh(nx)))
+        };
+        FeCase::new(&physics, ar, tau, options)
+    }
+
+    /// The FE curves of every case: the FE tiers, then the order's meshes, each once.
+    fn curves(&self) -> Vec<(Kinematics, usize)> {
+        let mut out: Vec<(Kinematics, usize)> = vec![];
+        let tiers = self.tiers.iter().filter_map(|t| match *t {
+            Tier::Fe {
+                kinematics,
+                elements_along_face,
+            } => Some((kinematics, elements_along_face)),
+            _ => None,
+        });
+        let order = self.order_meshes().map(|n| (Kinematics::Finite, n));
+        for k in tiers.chain(order) {
+            if !out.contains(&k) {
+                out.push(k);
+            }
+        }
+        out
+    }
+}
+
+impl Scene for SpeedAccuracyScene {
+    fn validate(&self, v: &Validator) -> Result<(), SpecError> {
+        v.non_empty("speed_accuracy.aspect_ratios", self.aspect_ratios.len())?;
+        v.non_empty("speed_accuracy.tiers", self.tiers.len())?;
+        v.fe_section("speed_accuracy.fe", &self.fe, None, &self.ars())?;
+        let until = self.fe.until_a_over_lambda.get();
+        v.grid(
+            "speed_accuracy.a_over_lambda",
+            &self.a_over_lambda,
+            (0.0, until),
+            false,
+        )?;
+        let xs = self.a_over_lambda.values();
+        let e = &self.error_bands;
+        if !(e.len() >= 2
+            && e.windows(2).all(|w| w[0] < w[1])
+            && e[0] == xs[0]
+            && e[e.len() - 1] == xs[xs.len() - 1])
+        {
+            return Err(v.invalid(
+                "speed_accuracy.error_bands",
+                None,
+                format!("{e:?}"),
+                format!(
+                    "increasing band edges from {} to {} (the a_over_lambda grid's ends)",
+                    xs[0],
+                    xs[xs.len() - 1]
+                ),
+            ));
+        }
+        for (i, t) in self.tiers.iter().enumerate() {
+            if self.tiers[..i].contains(t) {
+                return Err(v.invalid(
+                    &format!("speed_accuracy.tiers[{i}]"),
+                    None,
+                    t.name(),
+                    "each tier once".into(),
+                ));
+            }
+        }
+        let [c, f] = self.reference_meshes;
+        let [o, ..] = self.order_meshes();
+        let range = MeshLevel::ELEMENTS_ALONG_FACE;
+        if !(f > c && range.contains(&c) && range.contains(&f) && o * f == c * c && o >= 4) {
+            return Err(v.invalid(
+                "speed_accuracy.reference_meshes",
+                None,
+                format!("{:?}", self.reference_meshes),
+                format!(
+                    "[coarse, fine] element counts with fine > coarse, in {}..={}, and coarse²/fine a whole number ≥ 4 (the third mesh of the observed order)",
+                    range.start(),
+                    range.end()
+                ),
+            ));
+        }
+        if let Some(m) = self.fe.mesh {
+            return Err(v.invalid(
+                "speed_accuracy.fe.mesh",
+                None,
+                format!("{m:?}"),
+                "not set: the tiers name their meshes".into(),
+            ));
+        }
+        if let Some(t) = self.fe.tolerance {
+            return Err(v.invalid(
+                "speed_accuracy.fe.tolerance",
+                None,
+                t.get().to_string(),
+                "not set: this scene measures the errors a tolerance is judged by".into(),
+            ));
+        }
+        if self.fe.kinematics != Kinematics::Finite {
+            return Err(v.invalid(
+                "speed_accuracy.fe.kinematics",
+                None,
+                self.fe.kinematics.name().into(),
+                "finite (the reference is the finite-strain solution; linear FE is a tier)".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    fn fe_cases(&self, _opts: &RunOptions) -> Vec<FeCase> {
+        let mut cases = vec![];
+        for tau in self.taus() {
+            for ar in self.ars() {
+                for (k, nx) in self.curves() {
+                    cases.push(self.case(k, nx, ar, tau));
+                }
+            }
+        }
+        cases
+    }
+
+    fn run(&self, ctx: &SceneContext) -> Result<SceneResult> {
+        if ctx.opts.fe_mesh_override.is_some() {
+            bail!("a mesh override does not apply to speed_accuracy: its tiers name their meshes");
+        }
+        let path = ctx.spec_dir.join(&self.timings);
+        let timings = tier_timings::read(&path)
+            .with_context(|| format!("speed_accuracy.timings: {}", path.display()))?;
+        run(ctx.title, self, &timings, &self.timings, ctx.opts)
+    }
+}
+
+/// One tier's measurement at one case.
+struct Measurement {
+    tier: Tier,
+    errors: Option<accuracy::ErrorSummary>,
+    /// Why there is no error (an FE curve that stops short, an unphysical law value).
+    status: String,
+    seconds_per_curve: f64,
+    seconds_per_point: Option<f64>,
+    fe: Option<FeCost>,
+}
+
+struct FeCost {
+    dofs: usize,
+    load_steps: usize,
+    newton_iterations: usize,
+}
+
+/// The Pareto front: indices of the measurements no other one beats in both error and cost,
+/// by increasing cost.
+fn pareto_front(ms: &[Measurement]) -> Vec<usize> {
+    let mut ok: Vec<usize> = (0..ms.len()).filter(|&i| ms[i].errors.is_some()).collect();
+    ok.sort_by(|&i, &j| {
+        ms[i]
+            .seconds_per_curve
+            .total_cmp(&ms[j].seconds_per_curve)
+            .then(ms[i].errors.unwrap().max.total_cmp(&ms[j].errors.unwrap().max))
+    });
+    let mut front = vec![];
+    let mut best = f64::INFINITY;
+    for i in ok {
+        let e = ms[i].errors.unwrap().max;
+        if e < best {
+            best = e;
+            front.push(i);
+        }
+    }
+    front
+}
+
+fn run(
+    title: &str,
+    s: &SpeedAccuracyScene,
+    timings: &Timings,
+    timings_name: &str,
+    opts: &RunOptions,
+) -> Result<SceneResult> {
+    let xs = s.a_over_lambda.values();
+    let (ars, taus) = (s.ars(), s.taus());
+    let cases = s.fe_cases(opts);
+    let outcomes = fe_cases::solve_all(&cases, opts)?;
+    let curve = |k: Kinematics, nx: usize, ar: f64, tau: f64| -> &FeOutcome {
+        let want = s.case(k, nx, ar, tau);
+        cases
+            .iter()
+            .zip(&outcomes)
+            .find(|(c, _)| {
+                c.problem == want.problem && c.options == want.options && c.tau_max_mpa == tau
+            })
+            .map(|(_, o)| o)
+            .expect("every curve of the scene is among its cases")
+    };
+    let [order_mesh, coarse, fine] = s.order_meshes();
+    let ratio = s.ratio();
+
+    let mut main = Table::new(
+        "",
+        &[
+            "tier",
+            "aspect_ratio",
+            "tau_max_mpa",
+            "status",
+            "max_rel_error",
+            "rms_rel_error",
+            "seconds_per_curve",
+            "seconds_per_point",
+            "dofs",
+            "load_steps",
+            "newton_iterations",
+            "pareto",
+        ],
+    );
+    let mut reference_table = Table::new(
+        "reference",
+        &[
+            "aspect_ratio",
+            "tau_max_mpa",
+            "estar_mpa",
+            "thickness_over_lambda",
+            "kappa_over_g",
+            "friction_coefficient",
+            "elastic_slip_over_element",
+            "a_over_lambda_min",
+            "a_over_lambda_max",
+            "order_meshes",
+            "observed_order",
+            "order_used",
+            "reference_error_estimate",
+            "reference_order_sensitivity",
+        ],
+    );
+    let mut bands_table = Table::new(
+        "bands",
+        &[
+            "tier",
+            "aspect_ratio",
+            "tau_max_mpa",
+            "a_over_lambda_from",
+            "a_over_lambda_to",
+            "max_rel_error",
+        ],
+    );
+    let physics = FePhysics::from(&s.fe);
+    let mut panels = vec![];
+    let mut all_errors: Vec<f64> = vec![];
+    let mut all_costs: Vec<f64> = vec![];
+    let mut per_case = vec![];
+    for &ar in &ars {
+        for &tau in &taus {
+            let at = format!("AR = {ar}, τ_max = {tau} MPa");
+            // the reference: Richardson on the two finest meshes, order from three
+            let order_curves = [order_mesh, coarse, fine].map(|nx| {
+                let o = curve(Kinematics::Finite, nx, ar, tau);
+                (nx, o)
+            });
+            for (nx, o) in &order_curves {
+                if let Some(f) = &o.failure {
+                    bail!("{at}: the reference needs the finite-strain curve on mesh {nx}, which stopped: {f}");
+                }
+            }
+            let table = convergence::convergence_table(
+                order_curves.map(|(_, o)| o.points.as_slice()),
+                ratio,
+                &xs,
+            )
+            .with_context(|| {
+                format!("{at}: the reference curves do not cover a/λ ∈ [{}, {}]", xs[0], xs[xs.len() - 1])
+            })?;
+            let q = table.observed_order;
+            let q_used = q.clamp(FORMAL_ORDER_RANGE.0, FORMAL_ORDER_RANGE.1);
+            let reference: Vec<f64> = table
+                .rows
+                .iter()
+                .map(|r| richardson(r.p_over_estar[1], r.p_over_estar[2], ratio, q_used))
+                .collect();
+            let mut reference_error = 0.0f64;
+            let mut sensitivity = 0.0f64;
+            for (r, &rv) in table.rows.iter().zip(&reference) {
+                let [_, c, f] = r.p_over_estar;
+                reference_error = reference_error.max(((f - rv) / rv).abs());
+                let spread = richardson(c, f, ratio, FORMAL_ORDER_RANGE.0)
+                    - richardson(c, f, ratio, FORMAL_ORDER_RANGE.1);
+                sensitivity = sensitivity.max((spread / rv).abs());
+            }
+            reference_table.push(vec![
+                ar.into(),
+                tau.into(),
+                physics.estar_mpa.into(),
+                physics.thickness_over_lambda.into(),
+                physics.kappa_over_g.into(),
+                physics.friction_coefficient.into(),
+                physics.elastic_slip_over_element.into(),
+                xs[0].into(),
+                xs[xs.len() - 1].into(),
+                format!("{order_mesh} {coarse} {fine}").into(),
+                q.into(),
+                q_used.into(),
+                reference_error.into(),
+                sensitivity.into(),
+            ]);
+
+            let mut ms: Vec<Measurement> = vec![];
+            for tier in &s.tiers {
+                let timing = timings.get(tier, ar, tau).with_context(|| {
+                    format!(
+                        "{timings_name} has no timing of tier {tier} at {at}: measure it with `wavy time-tiers` (make bench-tiers)"
+                    )
+                })?;
+                let (values, status, fe) = match *tier {
+                    Tier::Fe {
+                        kinematics,
+                        elements_along_face: nx,
+                    } => {
+                        let o = curve(kinematics, nx, ar, tau);
+                        let (mx, my) = mesh(nx).counts();
+                        let cost = FeCost {
+                            dofs: 2 * (mx + 1) * (my + 1),
+                            load_steps: o.points.len(),
+                            newton_iterations: o.points.iter().map(|p| p.newton_iterations).sum(),
+                        };
+                        match &o.failure {
+                            Some(f) => {
+                                let reached = o.points.last().map_or(0.0, |p| p.a_over_lambda);
+                                (None, format!("stops at a/λ = {reached:.3}: {f}"), Some(cost))
+                            }
+                            None => {
+                                let v: Option<Vec<f64>> =
+                                    xs.iter().map(|&x| convergence::p_at(&o.points, x)).collect();
+                                let v = v.with_context(|| {
+                                    format!("{at}: the curve of {tier} does not cover the a/λ grid")
+                                })?;
+                                (Some(v), "ok".into(), Some(cost))
+                            }
+                        }
+                    }
+                    _ => {
+                        let law = tier.law(ar, tau).expect("a closed-form tier has a law");
+                        match xs
+                            .iter()
+                            .map(|&x| law.physical_p_over_estar(x))
+                            .collect::<Result<Vec<f64>, _>>()
+                        {
+                            Ok(v) => (Some(v), "ok".into(), None),
+                            Err(e) => (None, format!("unphysical: {e}"), None),
+                        }
+                    }
+                };
+                let seconds_per_point = tier
+                    .is_closed_form()
+                    .then(|| timing.median_seconds_per_curve / timing.points_per_curve as f64);
+                for band in s.error_bands.windows(2) {
+                    let in_band: Vec<usize> = (0..xs.len())
+                        .filter(|&i| band[0] <= xs[i] && xs[i] <= band[1])
+                        .collect();
+                    let error = values.as_ref().map(|v| {
+                        let pick = |w: &[f64]| in_band.iter().map(|&i| w[i]).collect::<Vec<_>>();
+                        relative_errors(&pick(v), &pick(&reference)).max
+                    });
+                    bands_table.push(vec![
+                        tier.name().into(),
+                        ar.into(),
+                        tau.into(),
+                        band[0].into(),
+                        band[1].into(),
+                        error.into(),
+                    ]);
+                }
+                ms.push(Measurement {
+                    tier: *tier,
+                    errors: values.map(|v| relative_errors(&v, &reference)),
+                    status,
+                    seconds_per_curve: timing.median_seconds_per_curve,
+                    seconds_per_point,
+                    fe,
+                });
+            }
+            let front = pareto_front(&ms);
+            for (i, m) in ms.iter().enumerate() {
+                main.push(vec![
+                    m.tier.name().into(),
+                    ar.into(),
+                    tau.into(),
+                    m.status.clone().into(),
+                    m.errors.map(|e| e.max).into(),
+                    m.errors.map(|e| e.rms).into(),
+                    m.seconds_per_curve.into(),
+                    m.seconds_per_point.into(),
+                    m.fe.as_ref().map(|f| f.dofs as f64).into(),
+                    m.fe.as_ref().map(|f| f.load_steps as f64).into(),
+                    m.fe.as_ref().map(|f| f.newton_iterations as f64).into(),
+                    front.contains(&i).into(),
+                ]);
+                if let Some(e) = m.errors {
+                    all_errors.push(e.max);
+                    all_costs.push(m.seconds_per_curve);
+                }
+            }
+            per_case.push((ar, tau, reference_error, ms, front));
+        }
+    }
+
+    let x_range = log_range(&all_errors);
+    let y_range = log_range(&all_costs);
+    let mut failed_notes = vec![];
+    let finite_meshes: Vec<String> = s
+        .tiers
+        .iter()
+        .filter_map(|t| match t {
+            Tier::Fe {
+                kinematics: Kinematics::Finite,
+                elements_along_face,
+            } => Some(elements_along_face.to_string()),
+            _ => None,
+        })
+        .collect();
+    let fe_label = format!("FE finite strain, mesh {}", finite_meshes.join(", "));
+    for (k, (ar, tau, reference_error, ms, front)) in per_case.iter().enumerate() {
+        let family = |t: &Tier| match t {
+            Tier::Westergaard => ("Westergaard", palette::BLACK),
+            Tier::Wnl(crate::models::CoefficientSet::PaperTable1) => {
+                ("WNL, paper's Table 1", palette::ORANGE)
+            }
+            Tier::Wnl(_) => ("WNL, our refit", palette::GREEN),
+            Tier::Fe {
+                kinematics: Kinematics::Linear,
+                ..
+            } => ("FE linear", palette::PURPLE),
+            Tier::Fe { .. } => (fe_label.as_str(), palette::BLUE),
+        };
+        let mut series: Vec<Series> = vec![];
+        let front_points: Vec<(f64, f64)> = front
+            .iter()
+            .map(|&i| (ms[i].errors.unwrap().max, ms[i].seconds_per_curve))
+            .collect();
+        series.push(Series::dashed(
+            (k == 0).then(|| "Pareto front".into()),
+            palette::GREY,
+            1,
+            front_points,
+        ));
+        let mut labels: Vec<&str> = vec![];
+        for m in ms {
+            let Some(e) = m.errors else { continue };
+            let (label, color) = family(&m.tier);
+            let first = !labels.contains(&label);
+            labels.push(label);
+            series.push(Series::markers(
+                (k == 0 && first).then(|| label.to_string()),
+                color,
+                5,
+                vec![(e.max, m.seconds_per_curve)],
+            ));
+        }
+        let fe_path: Vec<(f64, f64)> = ms
+            .iter()
+            .filter(|m| {
+                matches!(
+                    m.tier,
+                    Tier::Fe {
+                        kinematics: Kinematics::Finite,
+                        ..
+                    }
+                )
+            })
+            .filter_map(|m| Some((m.errors?.max, m.seconds_per_curve)))
+            .collect();
+        series.push(Series::line(None, palette::BLUE, 1, fe_path));
+        let failed: Vec<String> = ms
+            .iter()
+            .filter(|m| m.errors.is_none())
+            .map(|m| m.tier.name())
+            .collect();
+        let mut notes = vec![format!(
+            "reference error ≤ {}",
+            accuracy::measured::percent(*reference_error)
+        )];
+        if !failed.is_empty() {
+            notes.push(format!("no curve: {}", failed.join(", ")));
+            failed_notes.push(format!("AR = {ar}, τ_max = {tau} MPa: {}", failed.join(", ")));
+        }
+        panels.push(Panel {
+            title: format!("AR = {ar}, τ_max = {tau} MPa"),
+            x_label: "largest relative error of p̄/E*".into(),
+            y_label: "wall time per curve, s".into(),
+            x_range,
+            y_range,
+            series,
+            notes,
+            log_scale: (true, true),
+            legend: (k == 0).then_some(LegendPosition::LowerLeft),
+        });
+    }
+    let mut footer = vec![
+        format!(
+            "Error: largest over a/λ ∈ [{}, {}] against the Richardson extrapolation of FE meshes {coarse} and {fine}",
+            xs[0],
+            xs[xs.len() - 1],
+        ),
+        format!(
+            "(order observed with mesh {order_mesh}); E* = {} MPa, κ/G = {}, h/λ = {}, μ = {}. FE markers right to left: finer meshes.",
+            physics.estar_mpa,
+            physics.kappa_over_g,
+            physics.thickness_over_lambda,
+            physics.friction_coefficient
+        ),
+        format!(
+            "Wall time per curve (closed forms: {} points) from {timings_name}:",
+            xs.len()
+        ),
+    ];
+    footer.extend(timings.describe());
+    let mut notes = vec![];
+    if !failed_notes.is_empty() {
+        let note = format!(
+            "tiers without a curve (they stop short of a/λ = {}): {}",
+            s.fe.until_a_over_lambda.get(),
+            failed_notes.join("; ")
+        );
+        footer.push(note.clone());
+        notes.push(note);
+    }
+    let figure = Figure {
+        width: 540 * taus.len() as u32,
+        height: 380 * ars.len() as u32 + 150,
+        caption: title.into(),
+        grid: (ars.len(), taus.len()),
+        panels,
+        footer,
+        font_px: 15,
+    };
+    Ok(SceneResult {
+        tables: vec![main, reference_table, bands_table],
+        figure,
+        notes,
+        incomplete: vec![],
+    })
+}
+
+/// Whole decades enclosing `values` (positive), for a logarithmic axis.
+fn log_range(values: &[f64]) -> (f64, f64) {
+    let (lo, hi) = values
+        .iter()
+        .filter(|v| **v > 0.0 && v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        });
+    if !lo.is_finite() {
+        return (0.1, 1.0);
+    }
+    (
+        10f64.powf(lo.log10().floor()),
+        10f64.powf(hi.log10().ceil().max(lo.log10().floor() + 1.0)),
+    )
+}

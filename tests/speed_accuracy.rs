@@ -1,0 +1,307 @@
+//! The speed–accuracy trade: the scene's errors on a test-size measurement (snapshotted; times
+//! never are), the committed measurements, and the choice of a tier by tolerance through the
+//! binary (`wavy eval --tolerance`, `wavy solve --tolerance`, `wavy solve --error-estimate`).
+
+use std::path::Path;
+use std::process::{Command, Output};
+use wavy::accuracy::measured::{committed, Query};
+use wavy::runner::{load_spec, run_spec_file, tier_timings, RunOptions};
+
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn wavy(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_wavy"))
+        .args(args)
+        .current_dir(root())
+        .output()
+        .expect("the wavy binary runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// The columns of the scene's main table that do not depend on a clock.
+const ERROR_COLUMNS: [&str; 9] = [
+    "tier",
+    "aspect_ratio",
+    "tau_max_mpa",
+    "status",
+    "max_rel_error",
+    "rms_rel_error",
+    "dofs",
+    "load_steps",
+    "newton_iterations",
+];
+
+#[test]
+fn test_size_measurement_orders_the_tiers_and_pins_the_errors() {
+    let cache = tempfile::tempdir().unwrap();
+    let mut opts = RunOptions::default();
+    opts.sweep.cache_dir = cache.path().to_path_buf();
+    let out = run_spec_file(&root().join("tests/specs/speed_accuracy_small.toml"), &opts).unwrap();
+    let main = &out.tables[0];
+    let col = |name: &str| main.header.iter().position(|h| h == name).unwrap();
+    let error_of = |tier: &str| -> f64 {
+        let row = main
+            .rows
+            .iter()
+            .find(|r| r[col("tier")].to_string() == tier)
+            .unwrap();
+        row[col("max_rel_error")].to_string().parse().unwrap()
+    };
+    let reference = &out.tables[1];
+    let j = reference
+        .header
+        .iter()
+        .position(|h| h == "reference_error_estimate")
+        .unwrap();
+    let reference_error: f64 = reference.rows[0][j].to_string().parse().unwrap();
+    // refinement reduces the error, the reference is better than every tier, and the linear
+    // frictionless closed form is the least accurate at AR 0.1 (≈ 1–10 %)
+    let (e16, e24, ew) = (
+        error_of("fe-finite-16"),
+        error_of("fe-finite-24"),
+        error_of("westergaard"),
+    );
+    assert!(
+        reference_error < e24 && e24 < e16 && e16 < ew,
+        "{reference_error} {e24} {e16} {ew}"
+    );
+    assert!((0.005..0.2).contains(&ew), "{ew}");
+    // the snapshot holds the errors and the deterministic costs, never a time
+    let keep: Vec<usize> = ERROR_COLUMNS.iter().map(|c| col(c)).collect();
+    let mut pinned = wavy::table::Table::new("", &ERROR_COLUMNS);
+    for r in &main.rows {
+        pinned.push(keep.iter().map(|&k| r[k].clone()).collect());
+    }
+    insta::assert_snapshot!("errors", pinned.to_csv());
+    insta::assert_snapshot!("reference", reference.to_csv());
+}
+
+#[test]
+fn committed_spec_has_a_timing_for_every_tier_and_case() {
+    let spec = load_spec(&root().join("experiments/speed_accuracy.toml")).unwrap();
+    let s = spec.speed_accuracy.as_ref().unwrap();
+    let timings = tier_timings::read(&root().join("experiments").join(&s.timings)).unwrap();
+    let mut n = 0;
+    for ar in &s.aspect_ratios {
+        for tau in &s.fe.tau_max_mpa {
+            for tier in &s.tiers {
+                let t = timings.get(tier, ar.get(), tau.get());
+                assert!(t.is_some_and(|t| t.runs >= 3), "{tier} at {ar:?}, {tau:?}");
+                n += 1;
+            }
+        }
+    }
+    assert_eq!(n, 66);
+}
+
+#[test]
+fn committed_measurements_answer_inside_their_region_only() {
+    let table = committed().unwrap();
+    let q = |ar: f64, tau: f64, a: f64| Query {
+        aspect_ratio: ar,
+        tau_max_mpa: tau,
+        a_over_lambda: (a, a),
+        physics: &[],
+    };
+    let loose = table.choose(0.5, &q(0.18, 0.1, 0.3), |_| true).unwrap();
+    assert!(loose.tier.is_closed_form(), "{loose:?}");
+    assert!(table.choose(0.005, &q(0.18, 0.1, 0.3), |_| true).is_ok());
+    assert!(table.choose(1e-7, &q(0.18, 0.1, 0.3), |_| true).is_err());
+    for outside in [q(0.05, 0.0, 0.3), q(0.2, 0.15, 0.3), q(0.2, 0.05, 0.48)] {
+        assert!(
+            table.choose(0.5, &outside, |_| true).is_err(),
+            "{outside:?}"
+        );
+    }
+    let order = table.fe_order().unwrap();
+    assert!((1.0..=2.0).contains(&order), "{order}");
+}
+
+#[test]
+fn eval_tolerance_names_its_tier_or_refuses_with_exit_2() {
+    let ok = wavy(&[
+        "eval",
+        "--tolerance",
+        "0.005",
+        "--ar",
+        "0.18",
+        "--tau-max-mpa",
+        "0.1",
+        "--a-over-lambda",
+        "0.3",
+    ]);
+    assert_eq!(ok.status.code(), Some(0), "{}", stderr(&ok));
+    let err = stderr(&ok);
+    assert!(
+        err.contains("tolerance 0.005: tier ") && err.contains("measured error ≤"),
+        "{err}"
+    );
+    let text = String::from_utf8_lossy(&ok.stdout);
+    let row: Vec<&str> = text.lines().nth(1).unwrap().split(',').collect();
+    let p: f64 = row[6].parse().unwrap();
+    assert!(p > 0.0 && p < 1.0, "{p}");
+
+    for (args, flag) in [
+        (
+            vec![
+                "--tolerance",
+                "1e-7",
+                "--ar",
+                "0.18",
+                "--tau-max-mpa",
+                "0.1",
+            ],
+            "--tolerance = 1e-7",
+        ),
+        (vec!["--tolerance", "0.01", "--ar", "0.05"], "--ar = 0.05"),
+        (
+            vec![
+                "--tolerance",
+                "0.01",
+                "--ar",
+                "0.18",
+                "--tau-max-mpa",
+                "0.2",
+            ],
+            "--tau-max-mpa = 0.2",
+        ),
+        (vec!["--tolerance", "0", "--ar", "0.18"], "--tolerance = 0"),
+    ] {
+        let mut a = vec!["eval"];
+        a.extend(args);
+        a.extend(["--a-over-lambda", "0.3"]);
+        let o = wavy(&a);
+        assert_eq!(o.status.code(), Some(2), "{a:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(flag), "{a:?}: {}", stderr(&o));
+        assert!(o.stdout.is_empty());
+    }
+    let below = wavy(&[
+        "eval",
+        "--tolerance",
+        "0.01",
+        "--ar",
+        "0.18",
+        "--a-over-lambda",
+        "0.02",
+    ]);
+    assert_eq!(below.status.code(), Some(2));
+    assert!(
+        stderr(&below).contains("--a-over-lambda = 0.02"),
+        "{}",
+        stderr(&below)
+    );
+}
+
+#[test]
+fn solve_tolerance_picks_a_mesh_and_error_estimate_adds_a_column() {
+    let o = wavy(&[
+        "solve",
+        "--ar",
+        "0.1",
+        "--tolerance",
+        "0.05",
+        "--until-a-over-lambda",
+        "0.3",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stderr(&o).contains("tier fe-finite-"), "{}", stderr(&o));
+    let refused = wavy(&[
+        "solve",
+        "--ar",
+        "0.1",
+        "--tolerance",
+        "0.01",
+        "--kappa-over-g",
+        "10",
+    ]);
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(
+        stderr(&refused).contains("--kappa-over-g = 10"),
+        "{}",
+        stderr(&refused)
+    );
+
+    let o = wavy(&[
+        "solve",
+        "--ar",
+        "0.1",
+        "--mesh",
+        "24",
+        "--error-estimate",
+        "--until-a-over-lambda",
+        "0.3",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    let mut lines = text.lines();
+    assert!(lines.next().unwrap().ends_with(",error_estimate"));
+    let estimates: Vec<f64> = lines
+        .filter_map(|l| l.rsplit(',').next().unwrap().parse().ok())
+        .collect();
+    assert!(estimates.len() > 10, "{text}");
+    // a 24-element mesh is good to a few per cent at AR 0.1
+    assert!(
+        estimates.iter().all(|e| (0.0..0.1).contains(e)),
+        "{estimates:?}"
+    );
+}
+
+#[test]
+fn fe_section_error_estimate_adds_a_column_and_a_note_per_panel() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec = dir.path().join("estimate.toml");
+    std::fs::write(
+        &spec,
+        r#"title = "error estimate"
+[fe_vs_model]
+aspect_ratios = [0.1]
+tau_max_mpa = [0.0]
+a_over_lambda = { min = 0.0, max = 0.5, count = 11 }
+[fe_vs_model.models]
+draw = ["westergaard"]
+[fe_vs_model.fe]
+tau_max_mpa = [0.0]
+until_a_over_lambda = 0.3
+mesh = "24"
+error_estimate = true
+[check]
+rel_tol = 1e-5
+abs_tol = 1e-6
+"#,
+    )
+    .unwrap();
+    let mut opts = RunOptions::default();
+    opts.sweep.cache_dir = dir.path().join("cache");
+    let out = run_spec_file(&spec, &opts).unwrap();
+    let points = out.tables.iter().find(|t| t.name == "fe_points").unwrap();
+    assert_eq!(points.header.last().unwrap(), "error_estimate");
+    let estimates: Vec<f64> = points
+        .rows
+        .iter()
+        .filter_map(|r| r.last().unwrap().to_string().parse().ok())
+        .collect();
+    assert!(estimates.len() + 3 >= points.rows.len(), "{estimates:?}");
+    assert!(
+        estimates.iter().all(|e| (0.0..0.1).contains(e)),
+        "{estimates:?}"
+    );
+    assert!(out.svg.contains("FE error ≤"), "no note in the figure");
+
+    // a tolerance instead of a mesh: the section takes the mesh it needs; both is an error
+    let both = std::fs::read_to_string(&spec)
+        .unwrap()
+        .replace("error_estimate = true", "tolerance = 0.05");
+    std::fs::write(&spec, &both).unwrap();
+    let e = format!("{:#}", run_spec_file(&spec, &opts).unwrap_err());
+    assert!(
+        e.contains("fe_vs_model.fe.tolerance") && e.contains("absent when `mesh` is set"),
+        "{e}"
+    );
+    std::fs::write(&spec, both.replace("mesh = \"24\"\n", "")).unwrap();
+    assert!(run_spec_file(&spec, &opts).is_ok());
+}
