@@ -6,8 +6,8 @@
 //! measured values, its a/λ within the range the errors were taken over, and its other physical
 //! parameters equal the measured ones. A tier's error there is the largest of its errors at the
 //! measured cases that bracket the point (up to four: the neighbouring aspect ratios times the
-//! neighbouring τ_max), its cost the largest of their costs: a conservative reading of a table
-//! measured at a few points.
+//! neighbouring τ_max), each plus the error estimate of that case's reference, and its cost the
+//! largest of their costs: a conservative reading of a table measured at a few points.
 
 use super::Tier;
 use std::sync::OnceLock;
@@ -51,6 +51,10 @@ pub struct MeasuredCase {
     /// The FE convergence order used for the Richardson reference (observed, limited to
     /// [`super::FORMAL_ORDER_RANGE`]).
     pub order: f64,
+    /// The reference's relative uncertainty (its spread over the plausible convergence orders):
+    /// added to every tier's measured error when a tier is chosen, so that a choice never
+    /// promises more than the reference can tell.
+    pub reference_error: f64,
 }
 
 /// The committed measurements.
@@ -98,7 +102,8 @@ pub enum ChoiceError {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Choice {
     pub tier: Tier,
-    /// Its measured error at the point (largest over the bracketing cases).
+    /// Its measured error at the point plus the reference's own error estimate (largest over
+    /// the bracketing cases).
     pub max_rel_error: f64,
     /// Its measured cost per curve, s (largest over the bracketing cases).
     pub seconds_per_curve: f64,
@@ -213,15 +218,17 @@ impl MeasuredAccuracy {
         }
 
         let (header, rows) = records(reference_csv)?;
-        let [ar, tau, a_min, a_max, order] = [
+        let [ar, tau, a_min, a_max, order, reference_error] = [
             "aspect_ratio",
             "tau_max_mpa",
             "a_over_lambda_min",
             "a_over_lambda_max",
             "order_used",
+            "reference_uncertainty",
         ]
         .map(|n| column(&header, n));
-        let (ar, tau, a_min, a_max, order) = (ar?, tau?, a_min?, a_max?, order?);
+        let (ar, tau, a_min, a_max, order, reference_error) =
+            (ar?, tau?, a_min?, a_max?, order?, reference_error?);
         let physics: Vec<usize> = PHYSICS_COLUMNS
             .iter()
             .map(|n| column(&header, n))
@@ -241,6 +248,7 @@ impl MeasuredAccuracy {
                     number(&row[a_max], "a_over_lambda_max")?,
                 ),
                 order: number(&row[order], "order_used")?,
+                reference_error: number(&row[reference_error], "reference_uncertainty")?,
             });
         }
         let (header, rows) = records(bands_csv)?;
@@ -368,7 +376,7 @@ impl MeasuredAccuracy {
                         }
                     }
                 }
-                corners.push((a, t));
+                corners.push((a, t, case.reference_error));
             }
         }
         // per tier: (largest error, largest cost) over the corners, if measured at every corner
@@ -384,7 +392,7 @@ impl MeasuredAccuracy {
             let mut error = 0.0f64;
             let mut cost = 0.0f64;
             let mut complete = true;
-            for &(a, t) in &corners {
+            for &(a, t, reference_error) in &corners {
                 match self
                     .tiers
                     .iter()
@@ -396,7 +404,7 @@ impl MeasuredAccuracy {
                         ))
                     }) {
                     Some((e, c)) => {
-                        error = error.max(e);
+                        error = error.max(e + reference_error);
                         cost = cost.max(c);
                     }
                     None => complete = false,
@@ -413,7 +421,7 @@ impl MeasuredAccuracy {
                     tier,
                     max_rel_error: error,
                     seconds_per_curve: cost,
-                    cases: corners.clone(),
+                    cases: corners.iter().map(|&(a, t, _)| (a, t)).collect(),
                 });
             }
         }
@@ -456,9 +464,9 @@ fe-finite-32,0.3,0,,0.5
 fe-finite-48,0.1,0,0.002,0.4
 fe-finite-48,0.3,0,0.003,1.0
 ";
-    const REFERENCE: &str = "aspect_ratio,tau_max_mpa,estar_mpa,thickness_over_lambda,kappa_over_g,friction_coefficient,elastic_slip_over_element,a_over_lambda_min,a_over_lambda_max,order_used
-0.1,0,1,1,1000,1,0.005,0.05,0.45,1.5
-0.3,0,1,1,1000,1,0.005,0.05,0.45,1.25
+    const REFERENCE: &str = "aspect_ratio,tau_max_mpa,estar_mpa,thickness_over_lambda,kappa_over_g,friction_coefficient,elastic_slip_over_element,a_over_lambda_min,a_over_lambda_max,order_used,reference_uncertainty
+0.1,0,1,1,1000,1,0.005,0.05,0.45,1.5,0
+0.3,0,1,1,1000,1,0.005,0.05,0.45,1.25,0.0005
 ";
 
     const BANDS: &str =
@@ -513,7 +521,9 @@ fe-finite-32,0.1,0,0.25,0.45,0.001
         // failed at AR 0.3, is not a candidate
         let c = t.choose(0.005, &at(0.2, 0.3), |_| true).unwrap();
         assert_eq!(c.tier.name(), "fe-finite-48");
-        assert_eq!((c.max_rel_error, c.seconds_per_curve), (0.003, 1.0));
+        // the AR 0.3 reference's own error (0.0005) counts
+        assert!((c.max_rel_error - 0.0035).abs() < 1e-15, "{c:?}");
+        assert_eq!(c.seconds_per_curve, 1.0);
         assert_eq!(c.cases, vec![(0.1, 0.0), (0.3, 0.0)]);
         assert_eq!(t.fe_order().unwrap(), 1.25);
     }
