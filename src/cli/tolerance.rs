@@ -6,7 +6,7 @@ use super::eval::{EvalArgs, HEADER};
 use super::input::{out_of_range, InputError};
 use anyhow::{Context, Result};
 use std::io::Write;
-use wavy::accuracy::measured::{self, percent, Choice, ChoiceError, Query, PHYSICS_COLUMNS};
+use wavy::accuracy::measured::{self, percent, Choice, ChoiceError, Query};
 use wavy::accuracy::Tier;
 use wavy::fe::{self, Kinematics, MeshLevel};
 use wavy::models::PressureLaw;
@@ -71,18 +71,6 @@ fn announce(choice: &Choice, tolerance: f64) {
     );
 }
 
-/// The physical parameters of `physics` by the measured tables' column names.
-fn physics_columns(physics: &FePhysics) -> Vec<(&'static str, f64)> {
-    let values = [
-        physics.estar_mpa,
-        physics.thickness_over_lambda,
-        physics.kappa_over_g,
-        physics.friction_coefficient,
-        physics.elastic_slip_over_element,
-    ];
-    PHYSICS_COLUMNS.iter().copied().zip(values).collect()
-}
-
 /// `wavy eval --tolerance`: the forward evaluation by the cheapest qualifying tier.
 pub fn eval(args: &EvalArgs, tolerance: f64, out: &mut impl Write) -> Result<()> {
     check_tolerance(tolerance)?;
@@ -99,7 +87,7 @@ pub fn eval(args: &EvalArgs, tolerance: f64, out: &mut impl Write) -> Result<()>
         aspect_ratio: args.ar,
         tau_max_mpa: args.tau_max_mpa,
         a_over_lambda: (lo, hi),
-        physics: &physics_columns(&physics),
+        physics: &physics.by_column(),
     };
     let table = measured::committed()?;
     let choice = table
@@ -181,7 +169,7 @@ pub fn solve_mesh(
         aspect_ratio,
         tau_max_mpa,
         a_over_lambda: (until_a_over_lambda, until_a_over_lambda),
-        physics: &physics_columns(physics),
+        physics: &physics.by_column(),
     };
     let choice = measured::committed()?
         .choose(tolerance, &query, |t| {

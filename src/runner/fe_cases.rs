@@ -78,6 +78,21 @@ pub struct FePhysics {
     pub kinematics: Kinematics,
 }
 
+impl FePhysics {
+    /// The numeric parameters by the names of the measured tables' columns
+    /// (`accuracy::measured::PHYSICS_COLUMNS`, in that order).
+    pub fn by_column(&self) -> [(&'static str, f64); 5] {
+        let [e, h, k, mu, slip] = crate::accuracy::measured::PHYSICS_COLUMNS;
+        [
+            (e, self.estar_mpa),
+            (h, self.thickness_over_lambda),
+            (k, self.kappa_over_g),
+            (mu, self.friction_coefficient),
+            (slip, self.elastic_slip_over_element),
+        ]
+    }
+}
+
 impl Default for FePhysics {
     /// Every parameter at its default (`crate::defaults`), finite kinematics.
     fn default() -> Self {

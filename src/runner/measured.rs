@@ -37,8 +37,9 @@ pub fn read(path: &Path) -> Result<Option<MeasuredPoints>> {
     parse(&text).map(Some)
 }
 
-/// Parses the text of a data file.
-pub fn parse(text: &str) -> Result<MeasuredPoints> {
+/// Splits the text of a measured-data file into its `# key: value` provenance lines and the
+/// CSV body, and checks that every key of `required` has a value.
+pub fn split_provenance(text: &str, required: &[&str]) -> Result<(Vec<(String, String)>, String)> {
     let mut provenance = vec![];
     let mut body = String::new();
     for line in text.lines() {
@@ -51,14 +52,20 @@ pub fn parse(text: &str) -> Result<MeasuredPoints> {
             body.push('\n');
         }
     }
-    for key in REQUIRED_PROVENANCE {
+    for key in required {
         if !provenance.iter().any(|(k, v)| k == key && !v.is_empty()) {
             bail!(
                 "provenance line `# {key}: …` is missing; required: {}",
-                REQUIRED_PROVENANCE.join(", ")
+                required.join(", ")
             );
         }
     }
+    Ok((provenance, body))
+}
+
+/// Parses the text of a data file.
+pub fn parse(text: &str) -> Result<MeasuredPoints> {
+    let (provenance, body) = split_provenance(text, &REQUIRED_PROVENANCE)?;
     let mut r = csv::Reader::from_reader(body.as_bytes());
     let header: Vec<String> = r.headers()?.iter().map(String::from).collect();
     if header != ["load_n", "area_mm2"] {

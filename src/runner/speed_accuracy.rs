@@ -12,6 +12,7 @@ use super::fe_cases::{self, FeCase, FeOutcome, FePhysics};
 use super::scenes::{Scene, SceneContext, SceneResult};
 use super::tier_timings::{self, Timings};
 use super::RunOptions;
+use crate::accuracy::measured::PHYSICS_COLUMNS;
 use crate::accuracy::{self, relative_errors, richardson, Tier, FORMAL_ORDER_RANGE};
 use crate::fe::{convergence, Kinematics, MeshLevel};
 use crate::models::PressureLaw;
@@ -300,16 +301,9 @@ fn run(
             "pareto",
         ],
     );
-    let mut reference_table = Table::new(
-        "reference",
-        &[
-            "aspect_ratio",
-            "tau_max_mpa",
-            "estar_mpa",
-            "thickness_over_lambda",
-            "kappa_over_g",
-            "friction_coefficient",
-            "elastic_slip_over_element",
+    let mut reference_header = vec!["aspect_ratio", "tau_max_mpa"];
+    reference_header.extend(PHYSICS_COLUMNS);
+    reference_header.extend([
             "a_over_lambda_min",
             "a_over_lambda_max",
             "order_meshes",
@@ -317,8 +311,8 @@ fn run(
             "order_used",
             "reference_error_estimate",
             "reference_uncertainty",
-        ],
-    );
+    ]);
+    let mut reference_table = Table::new("reference", &reference_header);
     let mut bands_table = Table::new(
         "bands",
         &[
@@ -382,14 +376,9 @@ fn run(
                     - richardson(c, f, ratio, FORMAL_ORDER_RANGE.1);
                 sensitivity = sensitivity.max((spread / rv).abs());
             }
-            reference_table.push(vec![
-                ar.into(),
-                tau.into(),
-                physics.estar_mpa.into(),
-                physics.thickness_over_lambda.into(),
-                physics.kappa_over_g.into(),
-                physics.friction_coefficient.into(),
-                physics.elastic_slip_over_element.into(),
+            let mut row: Vec<crate::table::Cell> = vec![ar.into(), tau.into()];
+            row.extend(physics.by_column().map(|(_, v)| v.into()));
+            row.extend([
                 xs[0].into(),
                 xs[xs.len() - 1].into(),
                 format!("{order_mesh} {coarse} {fine}").into(),
@@ -398,6 +387,7 @@ fn run(
                 reference_error.into(),
                 sensitivity.into(),
             ]);
+            reference_table.push(row);
 
             let mut ms: Vec<Measurement> = vec![];
             for tier in &s.tiers {

@@ -103,26 +103,7 @@ impl Timings {
 
     /// Parses a timings file.
     pub fn parse(text: &str) -> Result<Self> {
-        let mut provenance = vec![];
-        let mut body = String::new();
-        for line in text.lines() {
-            if let Some(rest) = line.strip_prefix('#') {
-                if let Some((k, v)) = rest.split_once(':') {
-                    provenance.push((k.trim().to_string(), v.trim().to_string()));
-                }
-            } else {
-                body.push_str(line);
-                body.push('\n');
-            }
-        }
-        for key in REQUIRED_PROVENANCE {
-            if !provenance.iter().any(|(k, v)| k == key && !v.is_empty()) {
-                bail!(
-                    "provenance line `# {key}: …` is missing; required: {}",
-                    REQUIRED_PROVENANCE.join(", ")
-                );
-            }
-        }
+        let (provenance, body) = super::measured::split_provenance(text, &REQUIRED_PROVENANCE)?;
         let mut reader = csv::Reader::from_reader(body.as_bytes());
         let header: Vec<String> = reader.headers()?.iter().map(String::from).collect();
         if header != HEADER {
