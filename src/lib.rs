@@ -5,7 +5,8 @@
 //! - the core, with no I/O: [`models`] (Westergaard and the WNL model, their coefficient sets
 //!   and inverse), [`fe`] (the finite-strain finite-element solver), [`fit`] (re-deriving
 //!   Table 1), [`accuracy`] (the tiers that answer p̄(a), their measured errors and costs, and
-//!   the choice of the cheapest that meets a tolerance);
+//!   the choice of the cheapest that meets a tolerance), [`csv_text`] (the one reader of our CSV
+//!   tables as text);
 //! - output primitives: [`numfmt`] (the one float formatter), [`table`] (tables, CSV,
 //!   comparison), [`plot`] (deterministic SVG);
 //! - [`defaults`] (the open physical parameters) and [`spec`] (TOML field types and checks);
@@ -15,6 +16,7 @@
 //! depend on it.
 
 pub mod accuracy;
+pub mod csv_text;
 pub mod defaults;
 pub mod fe;
 pub mod fit;

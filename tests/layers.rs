@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 /// Bottom first: each layer's top-level modules of `src/lib.rs`.
 const LAYERS: &[(&str, &[&str])] = &[
-    ("core", &["models", "fe", "fit", "accuracy"]),
+    ("core", &["models", "fe", "fit", "accuracy", "csv_text"]),
     ("output primitives", &["numfmt", "table", "plot"]),
     ("specs", &["defaults", "spec"]),
     ("runner", &["runner"]),

@@ -10,6 +10,7 @@
 //! largest of their costs: a conservative reading of a table measured at a few points.
 
 use super::Tier;
+use crate::csv_text::CsvTable;
 use std::sync::OnceLock;
 
 /// One tier at one measured case.
@@ -54,7 +55,7 @@ pub struct MeasuredCase {
     /// The reference's relative uncertainty (its spread over the plausible convergence orders):
     /// added to every tier's measured error when a tier is chosen, so that a choice never
     /// promises more than the reference can tell.
-    pub reference_error: f64,
+    pub reference_uncertainty: f64,
 }
 
 /// The committed measurements.
@@ -154,130 +155,107 @@ fn distinct(mut v: Vec<f64>) -> Vec<f64> {
     v
 }
 
+/// A committed table, parsed.
+fn table(text: &str) -> Result<CsvTable, ChoiceError> {
+    CsvTable::parse(text).map_err(|e| ChoiceError::Unreadable(e.to_string()))
+}
+
+/// The rows of `table`, read by column name.
+fn named_rows(table: &CsvTable) -> impl Iterator<Item = NamedRow<'_>> {
+    (0..table.rows.len()).map(move |row| NamedRow { table, row })
+}
+
+/// One row of a committed table.
+struct NamedRow<'a> {
+    table: &'a CsvTable,
+    row: usize,
+}
+
+impl NamedRow<'_> {
+    fn cell(&self, name: &str) -> Result<&str, ChoiceError> {
+        self.table
+            .cell(self.row, name)
+            .ok_or_else(|| ChoiceError::Unreadable(format!("no column `{name}`")))
+    }
+
+    /// A finite number, or `None` for an empty cell.
+    fn optional_number(&self, name: &str) -> Result<Option<f64>, ChoiceError> {
+        match self.cell(name)? {
+            "" => Ok(None),
+            cell => cell
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .map(Some)
+                .ok_or_else(|| {
+                    ChoiceError::Unreadable(format!("column `{name}`: `{cell}` is not a number"))
+                }),
+        }
+    }
+
+    fn number(&self, name: &str) -> Result<f64, ChoiceError> {
+        self.optional_number(name)?
+            .ok_or_else(|| ChoiceError::Unreadable(format!("column `{name}`: empty")))
+    }
+
+    fn tier(&self) -> Result<Tier, ChoiceError> {
+        self.cell("tier")?
+            .parse()
+            .map_err(|e: super::TierParseError| ChoiceError::Unreadable(e.to_string()))
+    }
+}
+
 impl MeasuredAccuracy {
     /// Parses the scene's main table, its reference table and its table of errors per a/λ band
-    /// (CSV text).
+    /// (CSV text). Columns are found by name; other columns are ignored.
     pub fn parse(
         tiers_csv: &str,
         reference_csv: &str,
         bands_csv: &str,
     ) -> Result<Self, ChoiceError> {
-        let bad = |m: String| ChoiceError::Unreadable(m);
-        let records = |text: &str| -> Result<(Vec<String>, Vec<Vec<String>>), ChoiceError> {
-            let mut r = csv::Reader::from_reader(text.as_bytes());
-            let header = r
-                .headers()
-                .map_err(|e| bad(e.to_string()))?
-                .iter()
-                .map(String::from)
-                .collect();
-            let rows = r
-                .records()
-                .map(|rec| {
-                    rec.map(|rec| rec.iter().map(String::from).collect())
-                        .map_err(|e| bad(e.to_string()))
+        let tiers = named_rows(&table(tiers_csv)?)
+            .map(|r| {
+                Ok(MeasuredTier {
+                    tier: r.tier()?,
+                    aspect_ratio: r.number("aspect_ratio")?,
+                    tau_max_mpa: r.number("tau_max_mpa")?,
+                    max_rel_error: r.optional_number("max_rel_error")?,
+                    seconds_per_curve: r.number("seconds_per_curve")?,
                 })
-                .collect::<Result<_, _>>()?;
-            Ok((header, rows))
-        };
-        let column = |header: &[String], name: &str| {
-            header
-                .iter()
-                .position(|h| h == name)
-                .ok_or_else(|| bad(format!("no column `{name}`")))
-        };
-        let number = |cell: &str, name: &str| -> Result<f64, ChoiceError> {
-            cell.parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| bad(format!("column `{name}`: `{cell}` is not a number")))
-        };
-
-        let (header, rows) = records(tiers_csv)?;
-        let [tier, ar, tau, err, secs] = [
-            "tier",
-            "aspect_ratio",
-            "tau_max_mpa",
-            "max_rel_error",
-            "seconds_per_curve",
-        ]
-        .map(|n| column(&header, n));
-        let (tier, ar, tau, err, secs) = (tier?, ar?, tau?, err?, secs?);
-        let mut tiers = vec![];
-        for row in &rows {
-            tiers.push(MeasuredTier {
-                tier: row[tier].parse().map_err(|e| bad(format!("{e}")))?,
-                aspect_ratio: number(&row[ar], "aspect_ratio")?,
-                tau_max_mpa: number(&row[tau], "tau_max_mpa")?,
-                max_rel_error: match row[err].as_str() {
-                    "" => None,
-                    cell => Some(number(cell, "max_rel_error")?),
-                },
-                seconds_per_curve: number(&row[secs], "seconds_per_curve")?,
-            });
-        }
-
-        let (header, rows) = records(reference_csv)?;
-        let [ar, tau, a_min, a_max, order, reference_error] = [
-            "aspect_ratio",
-            "tau_max_mpa",
-            "a_over_lambda_min",
-            "a_over_lambda_max",
-            "order_used",
-            "reference_uncertainty",
-        ]
-        .map(|n| column(&header, n));
-        let (ar, tau, a_min, a_max, order, reference_error) =
-            (ar?, tau?, a_min?, a_max?, order?, reference_error?);
-        let physics: Vec<usize> = PHYSICS_COLUMNS
-            .iter()
-            .map(|n| column(&header, n))
-            .collect::<Result<_, _>>()?;
-        let mut cases = vec![];
-        for row in &rows {
-            cases.push(MeasuredCase {
-                aspect_ratio: number(&row[ar], "aspect_ratio")?,
-                tau_max_mpa: number(&row[tau], "tau_max_mpa")?,
-                physics: PHYSICS_COLUMNS
-                    .iter()
-                    .zip(&physics)
-                    .map(|(n, &j)| Ok((n.to_string(), number(&row[j], n)?)))
-                    .collect::<Result<_, ChoiceError>>()?,
-                a_over_lambda: (
-                    number(&row[a_min], "a_over_lambda_min")?,
-                    number(&row[a_max], "a_over_lambda_max")?,
-                ),
-                order: number(&row[order], "order_used")?,
-                reference_error: number(&row[reference_error], "reference_uncertainty")?,
-            });
-        }
-        let (header, rows) = records(bands_csv)?;
-        let [tier, ar, tau, from, to, err] = [
-            "tier",
-            "aspect_ratio",
-            "tau_max_mpa",
-            "a_over_lambda_from",
-            "a_over_lambda_to",
-            "max_rel_error",
-        ]
-        .map(|n| column(&header, n));
-        let (tier, ar, tau, from, to, err) = (tier?, ar?, tau?, from?, to?, err?);
-        let mut bands = vec![];
-        for row in &rows {
-            bands.push(MeasuredBand {
-                tier: row[tier].parse().map_err(|e| bad(format!("{e}")))?,
-                aspect_ratio: number(&row[ar], "aspect_ratio")?,
-                tau_max_mpa: number(&row[tau], "tau_max_mpa")?,
-                a_over_lambda: (
-                    number(&row[from], "a_over_lambda_from")?,
-                    number(&row[to], "a_over_lambda_to")?,
-                ),
-                max_rel_error: match row[err].as_str() {
-                    "" => None,
-                    cell => Some(number(cell, "max_rel_error")?),
-                },
-            });
-        }
+            })
+            .collect::<Result<_, ChoiceError>>()?;
+        let cases = named_rows(&table(reference_csv)?)
+            .map(|r| {
+                Ok(MeasuredCase {
+                    aspect_ratio: r.number("aspect_ratio")?,
+                    tau_max_mpa: r.number("tau_max_mpa")?,
+                    physics: PHYSICS_COLUMNS
+                        .iter()
+                        .map(|n| Ok((n.to_string(), r.number(n)?)))
+                        .collect::<Result<_, ChoiceError>>()?,
+                    a_over_lambda: (
+                        r.number("a_over_lambda_min")?,
+                        r.number("a_over_lambda_max")?,
+                    ),
+                    order: r.number("order_used")?,
+                    reference_uncertainty: r.number("reference_uncertainty")?,
+                })
+            })
+            .collect::<Result<_, ChoiceError>>()?;
+        let bands = named_rows(&table(bands_csv)?)
+            .map(|r| {
+                Ok(MeasuredBand {
+                    tier: r.tier()?,
+                    aspect_ratio: r.number("aspect_ratio")?,
+                    tau_max_mpa: r.number("tau_max_mpa")?,
+                    a_over_lambda: (
+                        r.number("a_over_lambda_from")?,
+                        r.number("a_over_lambda_to")?,
+                    ),
+                    max_rel_error: r.optional_number("max_rel_error")?,
+                })
+            })
+            .collect::<Result<_, ChoiceError>>()?;
         Ok(MeasuredAccuracy {
             tiers,
             cases,
@@ -376,7 +354,7 @@ impl MeasuredAccuracy {
                         }
                     }
                 }
-                corners.push((a, t, case.reference_error));
+                corners.push((a, t, case.reference_uncertainty));
             }
         }
         // per tier: (largest error, largest cost) over the corners, if measured at every corner
@@ -392,7 +370,7 @@ impl MeasuredAccuracy {
             let mut error = 0.0f64;
             let mut cost = 0.0f64;
             let mut complete = true;
-            for &(a, t, reference_error) in &corners {
+            for &(a, t, reference_uncertainty) in &corners {
                 match self
                     .tiers
                     .iter()
@@ -404,7 +382,7 @@ impl MeasuredAccuracy {
                         ))
                     }) {
                     Some((e, c)) => {
-                        error = error.max(e + reference_error);
+                        error = error.max(e + reference_uncertainty);
                         cost = cost.max(c);
                     }
                     None => complete = false,

@@ -57,10 +57,7 @@ impl Tier {
             Tier::Fe {
                 elements_along_face: nx,
                 ..
-            } => Some(MeshLevel::Elements {
-                nx,
-                ny: (nx / 2).max(2),
-            }),
+            } => Some(elements_along_face(nx)),
             _ => None,
         }
     }
@@ -169,6 +166,15 @@ pub fn richardson_relative_error(coarse: f64, fine: f64, ratio: f64, order: f64)
     ((fine - coarse) / (ratio.powf(order) - 1.0) / fine).abs()
 }
 
+/// The mesh of `nx` elements along the contact face and half as many (at least 2) across the
+/// thickness: what `wavy solve --mesh N` and a spec's `mesh = "N"` mean (`MeshLevel::from_str`).
+pub fn elements_along_face(nx: usize) -> MeshLevel {
+    MeshLevel::Elements {
+        nx,
+        ny: (nx / 2).max(2),
+    }
+}
+
 /// The mesh one refinement step coarser than `mesh` (the named levels step by
 /// [`MeshLevel::REFINEMENT_RATIO`]; `N` elements along the face step to `round(N / 1.5)`), and
 /// the ratio of their element counts along the face; `None` below 4 elements.
@@ -181,10 +187,7 @@ pub fn coarser_level(mesh: MeshLevel) -> Option<(MeshLevel, f64)> {
             if nx < *MeshLevel::ELEMENTS_ALONG_FACE.start() {
                 return None;
             }
-            MeshLevel::Elements {
-                nx,
-                ny: (nx / 2).max(2),
-            }
+            elements_along_face(nx)
         }
     };
     Some((coarser, mesh.counts().0 as f64 / coarser.counts().0 as f64))

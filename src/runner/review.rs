@@ -33,31 +33,7 @@ const IDENTIFIERS: [&str; 1] = ["node"];
 /// Panels drawn at most in one overlay figure (the ones that moved most).
 const MAX_PANELS: usize = 24;
 
-/// A CSV table as text cells.
-#[derive(Debug, Clone, PartialEq)]
-pub struct CsvTable {
-    pub header: Vec<String>,
-    pub rows: Vec<Vec<String>>,
-}
-
-impl CsvTable {
-    /// Parses CSV text (header first).
-    pub fn parse(text: &str) -> Result<CsvTable, csv::Error> {
-        let mut r = csv::ReaderBuilder::new()
-            .has_headers(true)
-            .from_reader(text.as_bytes());
-        let header = r.headers()?.iter().map(String::from).collect();
-        let rows = r
-            .records()
-            .map(|rec| rec.map(|r| r.iter().map(String::from).collect()))
-            .collect::<Result<_, _>>()?;
-        Ok(CsvTable { header, rows })
-    }
-
-    fn column(&self, name: &str) -> Option<usize> {
-        self.header.iter().position(|h| h == name)
-    }
-}
+pub use crate::csv_text::CsvTable;
 
 /// How the columns of a table are read ([`review`](self) module docs).
 #[derive(Debug, Clone, PartialEq)]

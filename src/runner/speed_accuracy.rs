@@ -13,7 +13,9 @@ use super::scenes::{Scene, SceneContext, SceneResult};
 use super::tier_timings::{self, Timings};
 use super::RunOptions;
 use crate::accuracy::measured::PHYSICS_COLUMNS;
-use crate::accuracy::{self, relative_errors, richardson, Tier, FORMAL_ORDER_RANGE};
+use crate::accuracy::{
+    self, elements_along_face, relative_errors, richardson, Tier, FORMAL_ORDER_RANGE,
+};
 use crate::fe::{convergence, Kinematics, MeshLevel};
 use crate::models::PressureLaw;
 use crate::plot::{palette, Figure, LegendPosition, Panel, Series};
@@ -54,16 +56,6 @@ fn tiers_from_names<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Tier>, D::Err
         .collect()
 }
 
-/// The FE mesh of `nx` elements along the face, as the tiers name it.
-fn mesh(nx: usize) -> MeshLevel {
-    Tier::Fe {
-        kinematics: Kinematics::Finite,
-        elements_along_face: nx,
-    }
-    .mesh()
-    .expect("an FE tier has a mesh")
-}
-
 impl SpeedAccuracyScene {
     fn ars(&self) -> Vec<f64> {
         self.aspect_ratios.iter().map(|a| a.get()).collect()
@@ -89,8 +81,8 @@ impl SpeedAccuracyScene {
             ..FePhysics::from(&self.fe)
         };
         let options = crate::fe::SolveOptions {
-            mesh: mesh(nx),
-            ..self.fe.options(&[ar], Some(mesh(nx)))
+            mesh: elements_along_face(nx),
+            ..self.fe.options(&[ar], Some(elements_along_face(nx)))
         };
         FeCase::new(&physics, ar, tau, options)
     }
@@ -402,7 +394,7 @@ fn run(
                         elements_along_face: nx,
                     } => {
                         let o = curve(kinematics, nx, ar, tau);
-                        let (mx, my) = mesh(nx).counts();
+                        let (mx, my) = elements_along_face(nx).counts();
                         let cost = FeCost {
                             dofs: 2 * (mx + 1) * (my + 1),
                             load_steps: o.points.len(),
@@ -504,7 +496,7 @@ fn run(
         })
         .collect();
     let fe_label = format!("FE finite strain, mesh {}", finite_meshes.join(", "));
-    for (k, (ar, tau, reference_error, ms, front)) in per_case.iter().enumerate() {
+    for (k, (ar, tau, reference_uncertainty, ms, front)) in per_case.iter().enumerate() {
         let family = |t: &Tier| match t {
             Tier::Westergaard => ("Westergaard", palette::BLACK),
             Tier::Wnl(crate::models::CoefficientSet::PaperTable1) => {
@@ -562,7 +554,7 @@ fn run(
             .collect();
         let mut notes = vec![format!(
             "reference uncertain by ≤ {}",
-            accuracy::measured::percent(*reference_error)
+            accuracy::measured::percent(*reference_uncertainty)
         )];
         if !failed.is_empty() {
             notes.push(format!("no curve: {}", failed.join(", ")));
