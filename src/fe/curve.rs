@@ -97,6 +97,17 @@ pub struct DeformedState {
     pub contact_shear_over_estar: Vec<f64>,
 }
 
+/// The work a curve took, counted by the solver (deterministic, unlike its wall time).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SolveWork {
+    /// Tangent assemblies: Newton iterations of every attempt (failed bordered attempts
+    /// and sub-steps included) and load tangents of the predictor.
+    pub tangent_assemblies: usize,
+    /// Numeric factorisations of the tangent, of any kind (a failed Cholesky counts, as
+    /// does the `L D Lᵀ` that follows it).
+    pub factorisations: usize,
+}
+
 /// A computed load curve.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Curve {
@@ -104,6 +115,9 @@ pub struct Curve {
     pub points: Vec<CurvePoint>,
     /// Last converged state.
     pub final_state: DeformedState,
+    /// What the curve cost.
+    #[serde(default)]
+    pub work: SolveWork,
 }
 
 impl Curve {

@@ -46,7 +46,8 @@
 //!   `∂(w L φ)/∂q_m = w τ_max φ (∂ℓ/∂P_m)·c_m` on a neighbour's slot, and on the own
 //!   unknown `τ_max (y_s' y_s''/w ℓ φ + w φ (∂ℓ/∂P)·c + w ℓ dφ/dx)`.
 //!
-//! The tangent is not symmetric: it is solved by LU (see [`super::linsys`]). With
+//! The tangent is not symmetric: its friction rows are a low-rank update of the symmetric
+//! part, solved by the Woodbury identity (see [`super::linsys`]). With
 //! [`Interface::Frictionless`] none of this is built. For linear kinematics the same law
 //! acts on `u_x` at the reference position (`y_s' = 0`, `S = x`).
 

@@ -56,7 +56,7 @@ pub use convergence::{
     convergence_table, mesh_convergence, mesh_convergence_levels, p_at, ConvergenceRow,
     ConvergenceTable,
 };
-pub use curve::{Curve, CurvePoint, CurvePointParseError, DeformedState};
+pub use curve::{Curve, CurvePoint, CurvePointParseError, DeformedState, SolveWork};
 pub use edge::{EdgeRule, DISCRETE_EDGE_FRACTION};
 pub use error::{CurveFailure, SolveError};
 pub use friction::{CoulombOrowan, Interface};

@@ -112,6 +112,8 @@ pub struct Model {
     /// same state returns them (Newton's convergence check after a line search, the
     /// active-set check after a converged solve, the measurement).
     cache: Option<(State, Forces)>,
+    /// Tangent assemblies so far ([`super::SolveWork`]).
+    tangent_assemblies: usize,
 }
 
 type SlotMap = Vec<[Option<[f64; 2]>; 2]>;
@@ -209,6 +211,7 @@ impl Model {
             role,
             sys,
             cache: None,
+            tangent_assemblies: 0,
         }
     }
 
@@ -368,7 +371,7 @@ impl Model {
         let mut force_scale = 0.0_f64;
         let mut dresid_dd = vec![0.0; if with_matrix { 2 * nn } else { 0 }];
         // Friction: active sliding nodes (contact-face index per node) and, per such node,
-        // the rows (−y_s', 1)ᵀ H[node, ·] mapped to slots (value position, value) and their
+        // the rows (−y_s', 1)ᵀ H[node, ·] mapped to slots (column, value) and their
         // derivative with respect to d (the Coulomb regime needs them, see `friction`).
         let fric_of: Vec<Option<usize>> = match self.friction {
             Some(_) if with_matrix => {
@@ -391,6 +394,7 @@ impl Model {
         let mut fric_dd = vec![0.0; n_fric];
         if with_matrix {
             self.sys.clear();
+            self.tangent_assemblies += 1;
         }
         for e in 0..self.mesh.quads.len() {
             let q = self.mesh.quads[e];
@@ -455,7 +459,7 @@ impl Model {
                             for t in 0..2 {
                                 let Some(cb) = map[q[b]][t] else { continue };
                                 let v = nrow(2 * b) * cb[0] + nrow(2 * b + 1) * cb[1];
-                                fric_rows[k].push((pos[8 * (2 * a) + 2 * b + t], v));
+                                fric_rows[k].push((2 * q[b] + t, v));
                             }
                         }
                     }
@@ -497,14 +501,15 @@ impl Model {
                 if !with_matrix {
                     continue;
                 }
-                // the friction row of the tangent (formulas in `friction`)
+                // the friction row of the tangent (formulas in `friction`): its diagonal
+                // entry into the symmetric values, the rest as a row update (see `linsys`)
                 let diag = self.sys.diag_pos[2 * n];
                 match f.regime {
                     Regime::Open => {}
                     Regime::Coulomb => {
                         let coef = f.coulomb_row_factor(&law);
-                        for &(p, v) in &fric_rows[k] {
-                            self.sys.values[p] += coef * v;
+                        for &(col, v) in &fric_rows[k] {
+                            self.sys.add_to_row(2 * n, col, coef * v);
                         }
                         self.sys.values[diag] +=
                             f.coulomb_own(&law, [grad[2 * n], grad[2 * n + 1]]);
@@ -519,11 +524,8 @@ impl Model {
                             };
                             for t in 0..2 {
                                 let Some(cm) = map[nm][t] else { continue };
-                                let p = self
-                                    .sys
-                                    .position(2 * n, 2 * nm + t)
-                                    .expect("neighbours share an element");
-                                self.sys.values[p] += f.orowan_neighbour(&law, side, cm);
+                                let v = f.orowan_neighbour(&law, side, cm);
+                                self.sys.add_to_row(2 * n, 2 * nm + t, v);
                             }
                         }
                     }
@@ -749,6 +751,14 @@ impl Model {
     /// `G λ`).
     pub fn slab_reaction(&self, grad: &[f64]) -> f64 {
         -self.mesh.top.iter().map(|&n| grad[2 * n + 1]).sum::<f64>()
+    }
+
+    /// The work done so far: tangent assemblies and factorisations.
+    pub fn work(&self) -> super::SolveWork {
+        super::SolveWork {
+            tangent_assemblies: self.tangent_assemblies,
+            factorisations: self.sys.factorisations(),
+        }
     }
 
     /// Number of nodes.

@@ -109,16 +109,12 @@ impl StepFail {
 }
 
 /// Solve the assembled tangent for each right-hand side in place: the symmetric solve
-/// chain for the frictionless tangent, LU with friction (see [`super::linsys`]).
+/// chain, with friction's non-symmetric rows as a low-rank update (see [`super::linsys`]).
 fn linear_solve(
     model: &mut Model,
     rhs: &mut [Vec<f64>],
 ) -> Result<(), super::linsys::LinSolveError> {
-    if model.is_potential() {
-        model.sys.solve_symmetric_multi(rhs)
-    } else {
-        model.sys.lu_solve_multi(rhs)
-    }
+    model.sys.solve_multi(rhs)
 }
 
 /// [`linear_solve`] of a Newton system at iteration `iteration`; a failure ends the
@@ -600,5 +596,6 @@ pub(crate) fn trace(
     Ok(Curve {
         points: path.points,
         final_state,
+        work: model.work(),
     })
 }

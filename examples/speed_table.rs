@@ -1,0 +1,274 @@
+//! The frictional-speed table of `make bench` (README, "Frictional speed"):
+//!
+//! 1. per-curve wall time (median of `--runs` runs, one thread), DOFs, load steps, Newton
+//!    iterations on the converged path, tangent assemblies and factorisations of every
+//!    attempt, for AR ∈ {0.1, 0.18, 0.3} × τ_max ∈ {0, 0.2} MPa (E* = 1 MPa) at the
+//!    default mesh, and the ratio frictional / frictionless per AR;
+//! 2. the Fig. 3 sweep from an empty cache (`wavy run experiments/fig3_fe_vs_model.toml`
+//!    with a fresh cache folder, all cores), median of `--runs` runs;
+//! 3. cost growth at AR 0.3 with and without friction, mesh 16 to `--max-mesh` (one run
+//!    each, in a child process that also reports its peak memory `VmHWM`): the exponent
+//!    of wall time against DOFs (least squares in log–log), split into its factors
+//!    (load steps, tangent assemblies per step, time per assembly).
+//!
+//! Run: `make bench` (after a release build; `--wavy` names the binary of step 2).
+use std::path::PathBuf;
+use std::time::Instant;
+use wavy::fe::{solve_curve, Curve, Interface, Kinematics, LayerProblem, MeshLevel, SolveOptions};
+
+const CHILD: &str = "WAVY_SPEED_TABLE_CHILD";
+
+/// One frictional (τ_max/E* > 0) or frictionless curve at `mesh` elements along the face.
+fn problem(ar: f64, tau_max_over_estar: f64) -> LayerProblem {
+    LayerProblem {
+        kinematics: Kinematics::Finite,
+        interface: Interface::coulomb_orowan(
+            wavy::defaults::friction_coefficient(),
+            tau_max_over_estar,
+            wavy::defaults::elastic_slip_over_element(),
+        ),
+        ..wavy::defaults::layer_problem(ar)
+    }
+}
+
+fn options(mesh: MeshLevel) -> SolveOptions {
+    SolveOptions {
+        mesh,
+        ..Default::default()
+    }
+}
+
+/// Wall time (s) and the curve.
+fn timed_curve(ar: f64, tau: f64, mesh: MeshLevel) -> (f64, Curve) {
+    let start = Instant::now();
+    let curve = solve_curve(&problem(ar, tau), &options(mesh), &mut |_| {})
+        .unwrap_or_else(|f| panic!("AR {ar}, τ_max/E* {tau}, {mesh:?}: {}", f.error));
+    (start.elapsed().as_secs_f64(), curve)
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+fn dofs(mesh: MeshLevel) -> usize {
+    let (nx, ny) = mesh.counts();
+    2 * (nx + 1) * (ny + 1)
+}
+
+/// Peak resident memory of this process (`VmHWM`, kB), if `/proc` has it.
+fn peak_memory_kb() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
+/// Child mode (`AR,τ,N`): one curve, then `seconds steps assemblies factorisations kB`.
+fn child(spec: &str) -> ! {
+    let v: Vec<f64> = spec
+        .split(',')
+        .map(|x| x.parse().expect("number"))
+        .collect();
+    let mesh = MeshLevel::Elements {
+        nx: v[2] as usize,
+        ny: v[2] as usize / 2,
+    };
+    let start = Instant::now();
+    let c = match solve_curve(&problem(v[0], v[1]), &options(mesh), &mut |_| {}) {
+        Ok(c) => c,
+        Err(f) => {
+            println!("failed: {}", f.error);
+            std::process::exit(0)
+        }
+    };
+    let t = start.elapsed().as_secs_f64();
+    println!(
+        "{t} {} {} {} {}",
+        c.points.len(),
+        c.work.tangent_assemblies,
+        c.work.factorisations,
+        peak_memory_kb().unwrap_or(0)
+    );
+    std::process::exit(0)
+}
+
+/// Least-squares slope of `ln y` against `ln x`.
+fn log_slope(x: &[f64], y: &[f64]) -> f64 {
+    let lx: Vec<f64> = x.iter().map(|v| v.ln()).collect();
+    let ly: Vec<f64> = y.iter().map(|v| v.ln()).collect();
+    let n = lx.len() as f64;
+    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
+    let sxy: f64 = lx.iter().zip(&ly).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = lx.iter().map(|a| (a - mx) * (a - mx)).sum();
+    sxy / sxx
+}
+
+struct Args {
+    runs: usize,
+    max_mesh: usize,
+    wavy: Option<PathBuf>,
+}
+
+fn args() -> Args {
+    let mut a = Args {
+        runs: 3,
+        max_mesh: 192,
+        wavy: None,
+    };
+    let mut it = std::env::args().skip(1);
+    while let Some(flag) = it.next() {
+        let mut value = || it.next().unwrap_or_else(|| panic!("{flag} needs a value"));
+        match flag.as_str() {
+            "--runs" => a.runs = value().parse().expect("--runs: a count ≥ 1"),
+            "--max-mesh" => a.max_mesh = value().parse().expect("--max-mesh: elements"),
+            "--wavy" => a.wavy = Some(PathBuf::from(value())),
+            other => panic!("unknown flag {other} (--runs N, --max-mesh N, --wavy PATH)"),
+        }
+    }
+    assert!(a.runs >= 1, "--runs must be ≥ 1");
+    a
+}
+
+fn per_curve_table(runs: usize) {
+    let tau = 0.2; // τ_max = 0.2 MPa at E* = 1 MPa
+    println!("## Per curve, default mesh (48×24), one thread, median of {runs} runs\n");
+    println!("| AR | τ_max (MPa) | wall (s) | DOFs | load steps | Newton its (converged path) | tangent assemblies | factorisations |");
+    println!("|---|---|---|---|---|---|---|---|");
+    let mut ratios = Vec::new();
+    for ar in [0.1, 0.18, 0.3] {
+        let mut walls = [0.0; 2];
+        for (i, t) in [0.0, tau].into_iter().enumerate() {
+            let mut times = Vec::new();
+            let mut last = None;
+            for _ in 0..runs {
+                let (s, c) = timed_curve(ar, t, MeshLevel::Default);
+                times.push(s);
+                last = Some(c);
+            }
+            let c = last.expect("runs ≥ 1");
+            walls[i] = median(times);
+            println!(
+                "| {ar} | {t} | {:.2} | {} | {} | {} | {} | {} |",
+                walls[i],
+                dofs(MeshLevel::Default),
+                c.points.len(),
+                c.points.iter().map(|p| p.newton_iterations).sum::<usize>(),
+                c.work.tangent_assemblies,
+                c.work.factorisations
+            );
+        }
+        ratios.push((ar, walls[1] / walls[0]));
+    }
+    println!();
+    for (ar, r) in ratios {
+        println!("frictional / frictionless wall time, AR {ar}: {r:.2}");
+    }
+    println!();
+}
+
+fn cold_sweep(wavy: &PathBuf, runs: usize) {
+    let mut times = Vec::new();
+    for _ in 0..runs {
+        let dir = tempfile::tempdir().expect("temporary folder");
+        let start = Instant::now();
+        let status = std::process::Command::new(wavy)
+            .args(["run", "experiments/fig3_fe_vs_model.toml", "--cache"])
+            .arg(dir.path().join("cache"))
+            .arg("--out")
+            .arg(dir.path().join("out"))
+            .stdout(std::process::Stdio::null())
+            .status()
+            .expect("run the wavy binary");
+        assert!(status.success(), "the Fig. 3 sweep failed");
+        times.push(start.elapsed().as_secs_f64());
+    }
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    println!(
+        "Fig. 3 sweep (18 curves) from an empty cache, {cores} cores: {:.1} s (median of {runs}; runs: {})\n",
+        median(times.clone()),
+        times.iter().map(|t| format!("{t:.1}")).collect::<Vec<_>>().join(", ")
+    );
+}
+
+fn cost_growth(max_mesh: usize) {
+    let exe = std::env::current_exe().expect("this executable");
+    let meshes: Vec<usize> = [16, 24, 32, 48, 64, 96, 128, 192]
+        .into_iter()
+        .filter(|&n| n <= max_mesh)
+        .collect();
+    println!("## Cost growth, AR 0.3, one run per mesh (child process each)\n");
+    println!("| τ_max (MPa) | mesh | DOFs | wall (s) | load steps | tangent assemblies | factorisations | s per assembly | peak memory (MB) |");
+    println!("|---|---|---|---|---|---|---|---|---|");
+    for tau in [0.0, 0.2] {
+        let mut rows: Vec<[f64; 5]> = Vec::new();
+        for &n in &meshes {
+            let out = std::process::Command::new(&exe)
+                .env(CHILD, format!("0.3,{tau},{n}"))
+                .output()
+                .expect("child curve");
+            assert!(out.status.success(), "mesh {n}, τ {tau}: child failed");
+            let text = String::from_utf8_lossy(&out.stdout);
+            if let Some(reason) = text.trim().strip_prefix("failed: ") {
+                println!("| {tau} | {n} | | no curve: {reason} (left out of the fit) | | | | | |");
+                continue;
+            }
+            let v: Vec<f64> = text
+                .split_whitespace()
+                .map(|x| x.parse().expect("child output"))
+                .collect();
+            let d = (2 * (n + 1) * (n / 2 + 1)) as f64;
+            println!(
+                "| {tau} | {n} | {d} | {:.2} | {} | {} | {} | {:.2e} | {:.1} |",
+                v[0],
+                v[1],
+                v[2],
+                v[3],
+                v[0] / v[2],
+                v[4] / 1024.0
+            );
+            rows.push([d, v[0], v[1], v[2], v[0] / v[2]]);
+        }
+        let col = |j: usize| rows.iter().map(|r| r[j]).collect::<Vec<f64>>();
+        let (d, wall, steps, asm, per) = (col(0), col(1), col(2), col(3), col(4));
+        let per_step: Vec<f64> = asm.iter().zip(&steps).map(|(a, s)| a / s).collect();
+        let fitted: Vec<usize> = meshes
+            .iter()
+            .copied()
+            .filter(|&n| {
+                rows.iter()
+                    .any(|r| r[0] == (2 * (n + 1) * (n / 2 + 1)) as f64)
+            })
+            .collect();
+        let upper = d.len() / 2;
+        println!(
+            "\nτ_max {tau} MPa: wall ∝ DOFs^{:.2} (mesh {}–{}; upper half {}–{}: ^{:.2}) = steps ^{:.2} × assemblies per step ^{:.2} × time per assembly ^{:.2}\n",
+            log_slope(&d, &wall),
+            fitted[0],
+            fitted[fitted.len() - 1],
+            fitted[upper],
+            fitted[fitted.len() - 1],
+            log_slope(&d[upper..], &wall[upper..]),
+            log_slope(&d, &steps),
+            log_slope(&d, &per_step),
+            log_slope(&d, &per),
+        );
+    }
+}
+
+fn main() {
+    if let Ok(spec) = std::env::var(CHILD) {
+        child(&spec);
+    }
+    let a = args();
+    println!("# wavy frictional speed (make bench)\n");
+    per_curve_table(a.runs);
+    if let Some(w) = &a.wavy {
+        cold_sweep(w, a.runs);
+    }
+    cost_growth(a.max_mesh);
+}
