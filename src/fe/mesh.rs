@@ -23,10 +23,11 @@
 /// Mesh resolution. Each named level has [`MeshLevel::REFINEMENT_RATIO`] times the
 /// element counts of the previous one (the three levels of the convergence study).
 ///
-/// The default is the coarsest of these whose Richardson error estimate meets the
-/// 0.5 % accuracy target of `p̄(a)` over a/λ ∈ [0.1, 0.45] with a margin of about two
-/// (measured ≤ 0.19 % at AR = 0.1 and ≤ 0.26 % at AR = 0.3,
-/// `tests/fe_convergence.rs`): no finer mesh than the tolerance asks. A 24 × 12 mesh
+/// The default was chosen as the coarsest of these whose three-level Richardson estimate
+/// met the 0.5 % accuracy target of `p̄(a)` over a/λ ∈ [0.1, 0.45]. The finer measurement
+/// of the speed–accuracy scene (meshes 96 and 144, observed order 1.05–1.30) revises its
+/// error to 0.75–1.1 % at a/λ < 0.1 and at most 0.49 % above a/λ = 0.2 (README, "Speed
+/// and accuracy"); a user who needs less picks a finer mesh by tolerance. A 24 × 12 mesh
 /// does not reach a/λ = 0.45 at AR = 0.3 (Newton stalls near a/λ = 0.41).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum MeshLevel {
