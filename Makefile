@@ -4,7 +4,7 @@
 CARGO ?= cargo
 export CARGO_TERM_COLOR ?= never
 
-.PHONY: all reproduce test lint check bless stale bench bench-tiers fuzz clean
+.PHONY: all reproduce test lint check bless stale bench bench-solver bench-tiers fuzz clean
 
 all: reproduce
 
@@ -46,9 +46,21 @@ stale:
 	$(CARGO) run --release --locked --quiet -- reproduce
 	@bash .ci/stale-figures
 
-## Timings (medians) of the solver and the model laws.
+## The frictional-speed table (README, "Frictional speed"): per default-mesh curve the median wall time of 3 runs,
+## DOFs, load steps, Newton iterations, factorisations; frictional/frictionless ratio per AR; the Fig. 3 sweep from
+## an empty cache on all cores; the cost growth from mesh 16 to 192 with its exponent and peak memory (about 45
+## minutes, most of it the frictional mesh-192 curve; BENCH_MAX_MESH=128 stops earlier). Then the criterion medians
+## of the model laws.
+BENCH_MAX_MESH ?= 192
 bench:
-	$(CARGO) bench --locked
+	$(CARGO) build --release --locked
+	$(CARGO) run --release --locked --quiet --example speed_table -- --wavy target/release/wavy --max-mesh $(BENCH_MAX_MESH)
+	$(CARGO) bench --locked --bench models
+	$(CARGO) run --release --locked --quiet --example bench_medians
+
+## Criterion medians of whole solver curves per mesh level (about 15 minutes).
+bench-solver:
+	$(CARGO) bench --locked --bench solver
 	$(CARGO) run --release --locked --quiet --example bench_medians
 
 ## Wall time of every tier of experiments/speed_accuracy.toml (one thread, median of 3 runs), written
