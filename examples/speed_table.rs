@@ -15,6 +15,7 @@
 use std::path::PathBuf;
 use std::time::Instant;
 use wavy::fe::{solve_curve, Curve, Interface, Kinematics, LayerProblem, MeshLevel, SolveOptions};
+use wavy::runner::tier_timings::median;
 
 const CHILD: &str = "WAVY_SPEED_TABLE_CHILD";
 
@@ -44,16 +45,6 @@ fn timed_curve(ar: f64, tau: f64, mesh: MeshLevel) -> (f64, Curve) {
     let curve = solve_curve(&problem(ar, tau), &options(mesh), &mut |_| {})
         .unwrap_or_else(|f| panic!("AR {ar}, τ_max/E* {tau}, {mesh:?}: {}", f.error));
     (start.elapsed().as_secs_f64(), curve)
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
 }
 
 fn dofs(mesh: MeshLevel) -> usize {

@@ -96,6 +96,13 @@ fn solve_all_finite(rhs: &mut [Vec<f64>], solve: impl FnOnce(MatMut<'_, f64>)) -
     }
 }
 
+/// `‖A x − b‖₂² ≤ rtol_squared · ‖b‖₂²`, given `A x`.
+fn residual_within(ax: &[f64], b: &[f64], rtol_squared: f64) -> bool {
+    let r2: f64 = ax.iter().zip(b).map(|(a, b)| (a - b) * (a - b)).sum();
+    let b2: f64 = b.iter().map(|v| v * v).sum();
+    r2 <= rtol_squared * b2
+}
+
 /// Work memory of a factorisation, kept across factorisations.
 struct Scratch {
     req: faer::dyn_stack::StackReq,
@@ -390,14 +397,8 @@ impl SparseSystem {
             })
             .collect();
         let accurate = solutions.iter().zip(rhs.iter()).all(|(x, b)| {
-            let r2: f64 = self
-                .mul_updated(x)
-                .iter()
-                .zip(b)
-                .map(|(a, b)| (a - b) * (a - b))
-                .sum();
-            let b2: f64 = b.iter().map(|v| v * v).sum();
-            x.iter().all(|v| v.is_finite()) && r2 <= UPDATED_RESIDUAL_RTOL_SQUARED * b2
+            x.iter().all(|v| v.is_finite())
+                && residual_within(&self.mul_updated(x), b, UPDATED_RESIDUAL_RTOL_SQUARED)
         });
         if accurate {
             rhs.clone_from_slice(&solutions);
@@ -517,16 +518,11 @@ impl SparseSystem {
         }) {
             return Ok(false);
         }
-        let accurate = rhs.iter().zip(&b).take(checked).all(|(x, b)| {
-            let r2: f64 = self
-                .mul(x)
-                .iter()
-                .zip(b)
-                .map(|(a, b)| (a - b) * (a - b))
-                .sum();
-            let b2: f64 = b.iter().map(|v| v * v).sum();
-            r2 <= LDLT_RESIDUAL_RTOL_SQUARED * b2
-        });
+        let accurate = rhs
+            .iter()
+            .zip(&b)
+            .take(checked)
+            .all(|(x, b)| residual_within(&self.mul(x), b, LDLT_RESIDUAL_RTOL_SQUARED));
         if !accurate {
             rhs.clone_from_slice(&b);
         }
