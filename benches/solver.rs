@@ -9,6 +9,8 @@
 //! Run: `cargo bench --bench solver` (criterion reports the median of the samples).
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
+mod common;
+use common::peak_memory_kb;
 use wavy::fe::*;
 
 const CHILD: &str = "WAVY_BENCH_CURVE";
@@ -44,13 +46,6 @@ fn levels() -> [(&'static str, MeshLevel); 4] {
         ("64x32", MeshLevel::Elements { nx: 64, ny: 32 }),
         ("fine", MeshLevel::Fine),
     ]
-}
-
-/// Peak resident memory of this process (`VmHWM`, kB), if `/proc` has it.
-fn peak_memory_kb() -> Option<u64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
-    line.split_whitespace().nth(1)?.parse().ok()
 }
 
 /// Child mode: one curve, then print `VmHWM` and exit.

@@ -14,12 +14,16 @@
 //! Run: `make bench` (after a release build; `--wavy` names the binary of step 2).
 use std::path::PathBuf;
 use std::time::Instant;
+#[path = "../benches/common/mod.rs"]
+mod common;
+use common::peak_memory_kb;
 use wavy::fe::{solve_curve, Curve, Interface, Kinematics, LayerProblem, MeshLevel, SolveOptions};
 use wavy::runner::tier_timings::median;
 
 const CHILD: &str = "WAVY_SPEED_TABLE_CHILD";
 
-/// One frictional (τ_max/E* > 0) or frictionless curve at `mesh` elements along the face.
+/// The layer problem at aspect ratio `ar`, frictional when `τ_max/E*` > 0 (the project's
+/// other defaults).
 fn problem(ar: f64, tau_max_over_estar: f64) -> LayerProblem {
     LayerProblem {
         kinematics: Kinematics::Finite,
@@ -47,16 +51,14 @@ fn timed_curve(ar: f64, tau: f64, mesh: MeshLevel) -> (f64, Curve) {
     (start.elapsed().as_secs_f64(), curve)
 }
 
+/// The mesh of `n` elements along the contact face and `n/2` across (as `--mesh N`).
+fn face_mesh(n: usize) -> MeshLevel {
+    MeshLevel::Elements { nx: n, ny: n / 2 }
+}
+
 fn dofs(mesh: MeshLevel) -> usize {
     let (nx, ny) = mesh.counts();
     2 * (nx + 1) * (ny + 1)
-}
-
-/// Peak resident memory of this process (`VmHWM`, kB), if `/proc` has it.
-fn peak_memory_kb() -> Option<u64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
-    line.split_whitespace().nth(1)?.parse().ok()
 }
 
 /// Child mode (`AR,τ,N`): one curve, then `seconds steps assemblies factorisations kB`.
@@ -65,10 +67,7 @@ fn child(spec: &str) -> ! {
         .split(',')
         .map(|x| x.parse().expect("number"))
         .collect();
-    let mesh = MeshLevel::Elements {
-        nx: v[2] as usize,
-        ny: v[2] as usize / 2,
-    };
+    let mesh = face_mesh(v[2] as usize);
     let start = Instant::now();
     let c = match solve_curve(&problem(v[0], v[1]), &options(mesh), &mut |_| {}) {
         Ok(c) => c,
@@ -197,6 +196,7 @@ fn cost_growth(max_mesh: usize) {
     println!("|---|---|---|---|---|---|---|---|---|");
     for tau in [0.0, 0.2] {
         let mut rows: Vec<[f64; 5]> = Vec::new();
+        let mut fitted: Vec<usize> = Vec::new();
         for &n in &meshes {
             let out = std::process::Command::new(&exe)
                 .env(CHILD, format!("0.3,{tau},{n}"))
@@ -212,7 +212,7 @@ fn cost_growth(max_mesh: usize) {
                 .split_whitespace()
                 .map(|x| x.parse().expect("child output"))
                 .collect();
-            let d = (2 * (n + 1) * (n / 2 + 1)) as f64;
+            let d = dofs(face_mesh(n)) as f64;
             println!(
                 "| {tau} | {n} | {d} | {:.2} | {} | {} | {} | {:.2e} | {:.1} |",
                 v[0],
@@ -223,18 +223,11 @@ fn cost_growth(max_mesh: usize) {
                 v[4] / 1024.0
             );
             rows.push([d, v[0], v[1], v[2], v[0] / v[2]]);
+            fitted.push(n);
         }
         let col = |j: usize| rows.iter().map(|r| r[j]).collect::<Vec<f64>>();
         let (d, wall, steps, asm, per) = (col(0), col(1), col(2), col(3), col(4));
         let per_step: Vec<f64> = asm.iter().zip(&steps).map(|(a, s)| a / s).collect();
-        let fitted: Vec<usize> = meshes
-            .iter()
-            .copied()
-            .filter(|&n| {
-                rows.iter()
-                    .any(|r| r[0] == (2 * (n + 1) * (n / 2 + 1)) as f64)
-            })
-            .collect();
         let upper = d.len() / 2;
         println!(
             "\nτ_max {tau} MPa: wall ∝ DOFs^{:.2} (mesh {}–{}; upper half {}–{}: ^{:.2}) = steps ^{:.2} × assemblies per step ^{:.2} × time per assembly ^{:.2}\n",

@@ -1,6 +1,6 @@
-//! A CSV table as text cells, read by column name: the one reader of the project's own CSV
-//! tables (the committed speed–accuracy measurements, the tables `wavy diff` compares). Parses
-//! text; no I/O.
+//! A CSV table as text cells, read by column name: how the committed speed–accuracy
+//! measurements and the tables `wavy diff` compares are read (the measured data points and the
+//! tier timings still read their files with `csv::Reader` directly). Parses text; no I/O.
 
 /// A CSV table as text cells.
 #[derive(Debug, Clone, PartialEq)]

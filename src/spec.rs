@@ -9,7 +9,6 @@
 //! This module reads no file: [`parse_document`] takes the text and the name to quote in errors.
 
 use crate::accuracy::measured::{self, ChoiceError, Query, PHYSICS_COLUMNS};
-use crate::accuracy::Tier;
 use crate::defaults;
 use crate::fe::{Kinematics, MeshLevel};
 use crate::models::{CoefficientSet, ModelKind, Reading};
@@ -165,15 +164,7 @@ impl FeSection {
                     ),
                     physics: &physics,
                 };
-                let choice = table.choose(tolerance, &query, |t| {
-                    matches!(
-                        t,
-                        Tier::Fe {
-                            kinematics: Kinematics::Finite,
-                            ..
-                        }
-                    )
-                })?;
+                let choice = table.choose(tolerance, &query, |t| t.is_finite_fe())?;
                 let mesh = choice.tier.mesh().expect("an FE tier has a mesh");
                 if finest.is_none_or(|f| mesh.counts().0 > f.counts().0) {
                     finest = Some(mesh);

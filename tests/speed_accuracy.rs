@@ -61,7 +61,7 @@ fn test_size_measurement_orders_the_tiers_and_pins_the_errors() {
     let reference_error: f64 = reference.rows[0][j].to_string().parse().unwrap();
     // refinement reduces the error, the reference is better than every tier, and the linear
     // frictionless closed form is the least accurate at AR 0.1 (4.49 % against the full
-    // 96/144 reference, figures/speed_accuracy.csv; the test-size reference gives 4.49 % too)
+    // 96/144 reference, expected/speed_accuracy.csv; the test-size reference gives 4.49 % too)
     let (e16, e24, ew) = (
         error_of("fe-finite-16"),
         error_of("fe-finite-24"),
@@ -97,6 +97,7 @@ fn committed_spec_has_a_timing_for_every_tier_and_case() {
             }
         }
     }
+    // 3 aspect ratios × 2 τ_max × 11 tiers of experiments/speed_accuracy.toml
     assert_eq!(n, 66);
 }
 
@@ -245,7 +246,7 @@ fn solve_tolerance_picks_a_mesh_and_error_estimate_adds_a_column() {
         .filter_map(|l| l.rsplit(',').next().unwrap().parse().ok())
         .collect();
     assert!(estimates.len() > 10, "{text}");
-    // a 24-element mesh errs by 2.0 % at AR 0.1 (figures/speed_accuracy.csv, fe-finite-24): every
+    // a 24-element mesh errs by 2.0 % at AR 0.1 (expected/speed_accuracy.csv, fe-finite-24): every
     // estimate is positive and below 10 %
     assert!(
         estimates.iter().all(|e| (0.0..0.1).contains(e)),

@@ -51,13 +51,25 @@ impl Tier {
         !matches!(self, Tier::Fe { .. })
     }
 
+    /// True for our finite-strain FE (the paper's physics; the tiers a tolerance picks a mesh
+    /// from).
+    pub fn is_finite_fe(&self) -> bool {
+        matches!(
+            self,
+            Tier::Fe {
+                kinematics: Kinematics::Finite,
+                ..
+            }
+        )
+    }
+
     /// The mesh of an FE tier.
     pub fn mesh(&self) -> Option<MeshLevel> {
         match *self {
             Tier::Fe {
                 elements_along_face: nx,
                 ..
-            } => Some(elements_along_face(nx)),
+            } => Some(MeshLevel::along_face(nx)),
             _ => None,
         }
     }
@@ -166,15 +178,6 @@ pub fn richardson_relative_error(coarse: f64, fine: f64, ratio: f64, order: f64)
     ((fine - coarse) / (ratio.powf(order) - 1.0) / fine).abs()
 }
 
-/// The mesh of `nx` elements along the contact face and half as many (at least 2) across the
-/// thickness: what `wavy solve --mesh N` and a spec's `mesh = "N"` mean (`MeshLevel::from_str`).
-pub fn elements_along_face(nx: usize) -> MeshLevel {
-    MeshLevel::Elements {
-        nx,
-        ny: (nx / 2).max(2),
-    }
-}
-
 /// The mesh one refinement step coarser than `mesh` (the named levels step by
 /// [`MeshLevel::REFINEMENT_RATIO`]; `N` elements along the face step to `round(N / 1.5)`), and
 /// the ratio of their element counts along the face; `None` below 4 elements.
@@ -187,7 +190,7 @@ pub fn coarser_level(mesh: MeshLevel) -> Option<(MeshLevel, f64)> {
             if nx < *MeshLevel::ELEMENTS_ALONG_FACE.start() {
                 return None;
             }
-            elements_along_face(nx)
+            MeshLevel::along_face(nx)
         }
     };
     Some((coarser, mesh.counts().0 as f64 / coarser.counts().0 as f64))
@@ -206,15 +209,12 @@ pub fn error_estimates(
     fine.iter()
         .map(|p| {
             let c = p_at(coarse, p.a_over_lambda)?;
-            Some(((p.p_over_estar - c) / (ratio.powf(order) - 1.0) / p.p_over_estar).abs())
+            Some(richardson_relative_error(c, p.p_over_estar, ratio, order))
         })
         .collect()
 }
 
-/// The formal orders of the FE error (the contact-edge location, first order, and the Q1 load
-/// at a fixed displacement, second order): an observed order is limited to this range before it
-/// extrapolates (see `fe::convergence`).
-pub const FORMAL_ORDER_RANGE: (f64, f64) = (1.0, 2.0);
+pub use crate::fe::convergence::FORMAL_ORDER_RANGE;
 
 #[cfg(test)]
 mod tests {

@@ -131,7 +131,9 @@ pub fn solve(args: &SolveArgs, out: &mut impl Write) -> Result<ExitCode> {
     };
     let estimate = |p: &CurvePoint| -> String {
         coarse.as_ref().map_or(String::new(), |(c, ratio, order)| {
-            let e = wavy::accuracy::error_estimates(std::slice::from_ref(p), c, *ratio, *order)[0];
+            let e = wavy::fe::convergence::p_at(c, p.a_over_lambda).map(|pc| {
+                wavy::accuracy::richardson_relative_error(pc, p.p_over_estar, *ratio, *order)
+            });
             format!(",{}", e.map_or(String::new(), |e| e.to_string()))
         })
     };

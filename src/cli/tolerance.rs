@@ -172,15 +172,7 @@ pub fn solve_mesh(
         physics: &physics.by_column(),
     };
     let choice = measured::committed()?
-        .choose(tolerance, &query, |t| {
-            matches!(
-                t,
-                Tier::Fe {
-                    kinematics: Kinematics::Finite,
-                    ..
-                }
-            )
-        })
+        .choose(tolerance, &query, |t| t.is_finite_fe())
         .map_err(|e| refused(e, tolerance))?;
     announce(&choice, tolerance);
     Ok(choice.tier.mesh().expect("an FE tier has a mesh"))

@@ -26,6 +26,11 @@ use super::{solve_curve, CurveFailure, CurvePoint, LayerProblem, MeshLevel, Solv
 /// vanishing force, is released and touches again at a marginally larger load), and
 /// the interpolation needs distinct abscissae (closer than 10⁻⁶ counts as repeated;
 /// distinct events are an element length, ≳ 10⁻³, apart).
+/// The formal orders of the FE error (the contact-edge location, first order, and the Q1 load
+/// at a fixed displacement, second order): an observed order is limited to this range before it
+/// extrapolates.
+pub const FORMAL_ORDER_RANGE: (f64, f64) = (1.0, 2.0);
+
 pub fn p_at(points: &[CurvePoint], a_over_lambda: f64) -> Option<f64> {
     let mut xs: Vec<f64> = Vec::with_capacity(points.len());
     let mut ys: Vec<f64> = Vec::with_capacity(points.len());
@@ -104,7 +109,7 @@ pub fn convergence_table(
         s23 += ((f[1] - f[2]) / f[2]).powi(2);
     }
     let q = (s12.sqrt() / s23.sqrt()).ln() / ratio.ln();
-    let rq = ratio.powf(q.clamp(1.0, 2.0));
+    let rq = ratio.powf(q.clamp(FORMAL_ORDER_RANGE.0, FORMAL_ORDER_RANGE.1));
     let rows = vals
         .into_iter()
         .map(|(a, f)| ConvergenceRow {

@@ -26,8 +26,7 @@
 //! `m × m` system (`I + Vᵀ S⁻¹ E`, LU with partial pivoting), accepted if the residual
 //! of `K` is small; else the full `K` goes to LU (step 4). A sparse LU of `K` costs
 //! 5–10 Cholesky factorisations of `S` (its symbolic structure is that of `KᵀK`);
-//! the `m` extra right-hand sides cost far less (measured in the module's bench,
-//! README "Frictional speed").
+//! the `m` extra right-hand sides cost less (measured: README, "Frictional speed").
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::Solve;
@@ -40,17 +39,12 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::Side;
 use faer::{Conj, Mat, MatMut, Par};
 
-/// Acceptance of an unpivoted `L D Lᵀ` solution, `‖A x − b‖₂² ≤ tol · ‖b‖₂²`: a relative
+/// Acceptance of a solution that may be inaccurate, `‖A x − b‖₂² ≤ tol · ‖b‖₂²`: a relative
 /// residual of 10⁻⁸, far above the round-off of a stable factorisation, so that only an
-/// inaccurate (unstably factored) solution is rejected (measured: every indefinite
-/// tangent of an AR = 0.3 curve passes, see `ldlt_solve`).
-const LDLT_RESIDUAL_RTOL_SQUARED: f64 = 1e-16;
-
-/// Acceptance of a low-rank-updated (Woodbury) solution of `K x = b`,
-/// `‖K x − b‖₂² ≤ tol · ‖b‖₂²`: the same relative residual of 10⁻⁸ as
-/// [`LDLT_RESIDUAL_RTOL_SQUARED`], so that only an inaccurate solution (an
-/// ill-conditioned `I + Vᵀ S⁻¹ E`) goes to LU.
-const UPDATED_RESIDUAL_RTOL_SQUARED: f64 = 1e-16;
+/// inaccurate solution is rejected: an unpivoted `L D Lᵀ` factored unstably (measured:
+/// every indefinite tangent of an AR = 0.3 curve passes, see `ldlt_solve`), or a Woodbury
+/// solve with an ill-conditioned `I + Vᵀ S⁻¹ E` (then LU of the whole matrix).
+const RESIDUAL_RTOL_SQUARED: f64 = 1e-16;
 
 /// Failure of the sparse direct solve.
 #[derive(Debug, Clone, thiserror::Error)]
@@ -142,7 +136,7 @@ impl std::fmt::Debug for Scratch {
 /// `rᵢ` with its sparse vector `vᵢ` (entries `(column, value)`, a column may repeat: the
 /// entries add up).
 #[derive(Clone, Debug, Default)]
-pub struct RowUpdates {
+struct RowUpdates {
     /// Index into `rows` of each equation's update (`usize::MAX`: none).
     slot: Vec<usize>,
     rows: Vec<usize>,
@@ -167,12 +161,12 @@ impl RowUpdates {
     }
 
     /// Number of updated rows.
-    pub fn len(&self) -> usize {
+    fn len(&self) -> usize {
         self.rows.len()
     }
 
     /// `true` when the matrix is its symmetric part.
-    pub fn is_empty(&self) -> bool {
+    fn is_empty(&self) -> bool {
         self.rows.is_empty()
     }
 
@@ -311,11 +305,6 @@ impl SparseSystem {
         self.updates.add(row, col, value);
     }
 
-    /// Number of non-symmetric rows of the current matrix.
-    pub fn updated_rows(&self) -> usize {
-        self.updates.len()
-    }
-
     /// Numeric factorisations computed so far, of any kind.
     pub fn factorisations(&self) -> usize {
         self.factorisations
@@ -398,7 +387,7 @@ impl SparseSystem {
             .collect();
         let accurate = solutions.iter().zip(rhs.iter()).all(|(x, b)| {
             x.iter().all(|v| v.is_finite())
-                && residual_within(&self.mul_updated(x), b, UPDATED_RESIDUAL_RTOL_SQUARED)
+                && residual_within(&self.mul_updated(x), b, RESIDUAL_RTOL_SQUARED)
         });
         if accurate {
             rhs.clone_from_slice(&solutions);
@@ -522,7 +511,7 @@ impl SparseSystem {
             .iter()
             .zip(&b)
             .take(checked)
-            .all(|(x, b)| residual_within(&self.mul(x), b, LDLT_RESIDUAL_RTOL_SQUARED));
+            .all(|(x, b)| residual_within(&self.mul(x), b, RESIDUAL_RTOL_SQUARED));
         if !accurate {
             rhs.clone_from_slice(&b);
         }
@@ -654,7 +643,7 @@ mod tests {
         for (r, c, v) in updates {
             sys.add_to_row(r, c, v);
         }
-        assert_eq!(sys.updated_rows(), 2);
+        assert_eq!(sys.updates.len(), 2);
         let dense = Mat::from_fn(16, 16, |r, c| sys.get(r, c));
         assert_eq!(dense[(9, 12)] - strip().get(9, 12), 4.5);
         let b: Vec<Vec<f64>> = (0..2)
@@ -679,7 +668,7 @@ mod tests {
         }
         // clearing drops the updates: the matrix is symmetric again
         sys.clear();
-        assert_eq!(sys.updated_rows(), 0);
+        assert_eq!(sys.updates.len(), 0);
         assert_eq!(sys.get(9, 12), 0.0);
     }
 }

@@ -48,6 +48,15 @@ pub enum MeshLevel {
 }
 
 impl MeshLevel {
+    /// The mesh of `nx` elements along the contact face and half as many (at least 2) across
+    /// the thickness: what `wavy solve --mesh N` and a spec's `mesh = "N"` mean.
+    pub fn along_face(nx: usize) -> Self {
+        MeshLevel::Elements {
+            nx,
+            ny: (nx / 2).max(2),
+        }
+    }
+
     /// Ratio of the element counts of consecutive named levels.
     pub const REFINEMENT_RATIO: f64 = 1.5;
 
@@ -88,10 +97,7 @@ impl std::str::FromStr for MeshLevel {
             "default" => Ok(MeshLevel::Default),
             "fine" => Ok(MeshLevel::Fine),
             n => match n.parse::<usize>() {
-                Ok(nx) if Self::ELEMENTS_ALONG_FACE.contains(&nx) => Ok(MeshLevel::Elements {
-                    nx,
-                    ny: (nx / 2).max(2),
-                }),
+                Ok(nx) if Self::ELEMENTS_ALONG_FACE.contains(&nx) => Ok(Self::along_face(nx)),
                 _ => Err(MeshLevelParseError { value: s.into() }),
             },
         }

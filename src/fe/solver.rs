@@ -108,23 +108,14 @@ impl StepFail {
     }
 }
 
-/// Solve the assembled tangent for each right-hand side in place: the symmetric solve
-/// chain, with friction's non-symmetric rows as a low-rank update (see [`super::linsys`]).
-fn linear_solve(
-    model: &mut Model,
-    rhs: &mut [Vec<f64>],
-) -> Result<(), super::linsys::LinSolveError> {
-    model.sys.solve_multi(rhs)
-}
-
-/// [`linear_solve`] of a Newton system at iteration `iteration`; a failure ends the
-/// Newton solve.
+/// The linear solve ([`super::linsys::SparseSystem::solve_multi`]) of a Newton system at
+/// iteration `iteration`; a failure ends the Newton solve.
 pub(crate) fn solve_newton_system(
     model: &mut Model,
     rhs: &mut [Vec<f64>],
     iteration: usize,
 ) -> Result<(), StepFail> {
-    linear_solve(model, rhs).map_err(|e| StepFail::Linear {
+    model.sys.solve_multi(rhs).map_err(|e| StepFail::Linear {
         iteration,
         message: e.to_string(),
     })
@@ -412,7 +403,7 @@ fn deformed_state(model: &Model, st: &State, grad: &[f64], estar: f64) -> Deform
 pub(crate) fn load_tangent(model: &mut Model, st: &State) -> Option<Vec<f64>> {
     let f = model.assemble(st, true)?;
     let mut rhs = [f.dresid_dd.iter().map(|v| -v).collect::<Vec<f64>>()];
-    linear_solve(model, &mut rhs).ok()?;
+    model.sys.solve_multi(&mut rhs).ok()?;
     let [z] = rhs;
     Some(z)
 }

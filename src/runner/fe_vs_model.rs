@@ -66,10 +66,6 @@ impl Scene for FeVsModelScene {
     }
 }
 
-/// The smallest a/λ of the error note of a panel: the lower end of the range the speed–accuracy
-/// scene measures errors on (`experiments/speed_accuracy.toml`).
-const ERROR_NOTE_FROM_A_OVER_LAMBDA: f64 = 0.05;
-
 /// Mean squared error and largest absolute deviation of `law` against FE points, in p̄/E*.
 fn errors(law: &ModelLaw, fe: &FeOutcome) -> (f64, f64) {
     let n = fe.points.len().max(1) as f64;
@@ -93,9 +89,18 @@ fn run(title: &str, s: &FeVsModelScene, opts: &RunOptions) -> Result<SceneResult
         .as_ref()
         .map_or(0, |fe| fe.tau_max_mpa.len() * ars.len());
     let (cases, outcomes) = (&all_cases[..n_main], &all_outcomes[..n_main]);
+    // The error note of a panel starts where the committed speed–accuracy errors do (the
+    // relative error estimate grows without bound as a/λ → 0).
+    let mut error_note_from_a_over_lambda = 0.0;
     let estimates: Vec<Option<Vec<Option<f64>>>> = match &s.fe {
         Some(fe) if fe.error_estimate => {
-            let order = crate::accuracy::measured::committed()?.fe_order()?;
+            let measured = crate::accuracy::measured::committed()?;
+            let order = measured.fe_order()?;
+            error_note_from_a_over_lambda = measured
+                .cases
+                .iter()
+                .map(|c| c.a_over_lambda.0)
+                .fold(f64::INFINITY, f64::min);
             let coarse = fe_cases::coarser_cases(cases);
             coarse
                 .iter()
@@ -241,7 +246,7 @@ fn run(title: &str, s: &FeVsModelScene, opts: &RunOptions) -> Result<SceneResult
                         fe.points
                             .iter()
                             .zip(e)
-                            .filter(|(p, _)| p.a_over_lambda >= ERROR_NOTE_FROM_A_OVER_LAMBDA)
+                            .filter(|(p, _)| p.a_over_lambda >= error_note_from_a_over_lambda)
                             .filter_map(|(_, e)| *e)
                             .reduce(f64::max)
                     });

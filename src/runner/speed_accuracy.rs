@@ -14,7 +14,7 @@ use super::tier_timings::{self, Timings};
 use super::RunOptions;
 use crate::accuracy::measured::PHYSICS_COLUMNS;
 use crate::accuracy::{
-    self, elements_along_face, relative_errors, richardson, Tier, FORMAL_ORDER_RANGE,
+    self, relative_errors, richardson, Tier, FORMAL_ORDER_RANGE,
 };
 use crate::fe::{convergence, Kinematics, MeshLevel};
 use crate::models::PressureLaw;
@@ -80,10 +80,7 @@ impl SpeedAccuracyScene {
             kinematics,
             ..FePhysics::from(&self.fe)
         };
-        let options = crate::fe::SolveOptions {
-            mesh: elements_along_face(nx),
-            ..self.fe.options(&[ar], Some(elements_along_face(nx)))
-        };
+        let options = self.fe.options(&[ar], Some(MeshLevel::along_face(nx)));
         FeCase::new(&physics, ar, tau, options)
     }
 
@@ -394,7 +391,7 @@ fn run(
                         elements_along_face: nx,
                     } => {
                         let o = curve(kinematics, nx, ar, tau);
-                        let (mx, my) = elements_along_face(nx).counts();
+                        let (mx, my) = MeshLevel::along_face(nx).counts();
                         let cost = FeCost {
                             dofs: 2 * (mx + 1) * (my + 1),
                             load_steps: o.points.len(),
@@ -535,15 +532,7 @@ fn run(
         }
         let fe_path: Vec<(f64, f64)> = ms
             .iter()
-            .filter(|m| {
-                matches!(
-                    m.tier,
-                    Tier::Fe {
-                        kinematics: Kinematics::Finite,
-                        ..
-                    }
-                )
-            })
+            .filter(|m| m.tier.is_finite_fe())
             .filter_map(|m| Some((m.errors?.max, m.seconds_per_curve)))
             .collect();
         series.push(Series::line(None, palette::BLUE, 1, fe_path));
