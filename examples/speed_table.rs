@@ -12,6 +12,9 @@
 //!    (load steps, tangent assemblies per step, time per assembly).
 //!
 //! Run: `make bench` (after a release build; `--wavy` names the binary of step 2).
+//! `--no-branch-switch` measures steps 1 and 3 without the semismooth choice of the
+//! friction branches (`SolveOptions::semismooth_friction` off): the same build, before
+//! and after that change.
 use std::path::PathBuf;
 use std::time::Instant;
 #[path = "../benches/common/mod.rs"]
@@ -21,6 +24,9 @@ use wavy::fe::{solve_curve, Curve, Interface, Kinematics, LayerProblem, MeshLeve
 use wavy::runner::tier_timings::median;
 
 const CHILD: &str = "WAVY_SPEED_TABLE_CHILD";
+
+/// Set (to any value) for `--no-branch-switch`, inherited by the child processes.
+const NO_BRANCH_SWITCH: &str = "WAVY_SPEED_TABLE_NO_BRANCH_SWITCH";
 
 /// The layer problem at aspect ratio `ar`, frictional when `τ_max/E*` > 0 (the project's
 /// other defaults).
@@ -39,6 +45,7 @@ fn problem(ar: f64, tau_max_over_estar: f64) -> LayerProblem {
 fn options(mesh: MeshLevel) -> SolveOptions {
     SolveOptions {
         mesh,
+        semismooth_friction: std::env::var_os(NO_BRANCH_SWITCH).is_none(),
         ..Default::default()
     }
 }
@@ -117,7 +124,10 @@ fn args() -> Args {
             "--runs" => a.runs = value().parse().expect("--runs: a count ≥ 1"),
             "--max-mesh" => a.max_mesh = value().parse().expect("--max-mesh: elements"),
             "--wavy" => a.wavy = Some(PathBuf::from(value())),
-            other => panic!("unknown flag {other} (--runs N, --max-mesh N, --wavy PATH)"),
+            "--no-branch-switch" => std::env::set_var(NO_BRANCH_SWITCH, "1"),
+            other => panic!(
+                "unknown flag {other} (--runs N, --max-mesh N, --wavy PATH, --no-branch-switch)"
+            ),
         }
     }
     assert!(a.runs >= 1, "--runs must be ≥ 1");
@@ -250,6 +260,9 @@ fn main() {
     }
     let a = args();
     println!("# wavy frictional speed (make bench)\n");
+    if std::env::var_os(NO_BRANCH_SWITCH).is_some() {
+        println!("(without the semismooth friction-branch switch)\n");
+    }
     per_curve_table(a.runs);
     if let Some(w) = &a.wavy {
         cold_sweep(w, a.runs);

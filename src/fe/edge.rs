@@ -28,8 +28,8 @@ use serde::{Deserialize, Serialize};
 use super::error::SolveError;
 use super::model::{Model, State};
 use super::solver::{
-    equilibrate, inf_norm, line_search, predictor, residual_tolerance, solve_newton_system,
-    tangent_at, Decrease, StepFail,
+    equilibrate, inf_norm, l2_norm, line_search, predictor, residual_tolerance,
+    solve_newton_system, tangent_at, Decrease, StepFail,
 };
 use super::{Kinematics, SolveOptions};
 
@@ -240,6 +240,12 @@ pub(crate) fn newton_edge(
     let gap_tol = BORDERED_GAP_FRACTION * event_tol;
     let mut last_res = f64::NAN;
     let mut kscale = 0.0;
+    // the residual's part of the merit: its largest entry without friction; with friction
+    // its 2-norm, so that one node's row (a stick node's stiff spring) does not decide the
+    // step alone (measured: 4710 against 5306 tangent assemblies over eight frictional
+    // curves at AR 0.1–0.3; without friction the 2-norm changed nothing but the path)
+    let potential = model.is_potential();
+    let residual_merit = move |r: &[f64]| if potential { inf_norm(r) } else { l2_norm(r) };
     for it in 0..=opts.max_newton_iterations {
         // convergence check on the forces alone (cached after the line search), the
         // matrix only when another iteration follows
@@ -269,7 +275,7 @@ pub(crate) fn newton_edge(
         if it == 0 {
             kscale = inf_norm(&f.dresid_dd);
         }
-        let merit = res + kscale * c.abs();
+        let merit = residual_merit(&f.resid) + kscale * c.abs();
         if !merit.is_finite() {
             break;
         }
@@ -277,7 +283,13 @@ pub(crate) fn newton_edge(
             f.resid.iter().map(|r| -r).collect::<Vec<f64>>(),
             f.dresid_dd.iter().map(|r| -r).collect::<Vec<f64>>(),
         ];
-        solve_newton_system(model, &mut rhs, it)?;
+        let node = model.mesh.bottom[k];
+        let (_, dc) = model.edge_constraint(st, k);
+        let rate = |z: &[f64]| dc[0] * z[2 * node] + dc[1] * z[2 * node + 1];
+        solve_newton_system(model, opts, &mut rhs, it, |z| {
+            let dd = -(c + rate(&z[0])) / rate(&z[1]);
+            z[0].iter().zip(&z[1]).map(|(a, b)| a + b * dd).collect()
+        })?;
         let (z1, z2) = (&rhs[0], &rhs[1]);
         let den = gap_rate(model, st, k, z2);
         if den.abs() < INSENSITIVE_GAP_RATE {
@@ -291,7 +303,7 @@ pub(crate) fn newton_edge(
         let dq: Vec<f64> = z1.iter().zip(z2).map(|(a, b)| a + b * dd).collect();
         let edge_merit = |m: &Model, trial: &State, ft: &super::model::Forces| {
             let (ct, _) = m.edge_constraint(trial, k);
-            inf_norm(&ft.resid) + kscale * ct.abs()
+            residual_merit(&ft.resid) + kscale * ct.abs()
         };
         let decrease = if model.kin == Kinematics::Linear && model.is_potential() {
             Decrease::Exact

@@ -27,6 +27,11 @@
 //! of `K` is small; else the full `K` goes to LU (step 4). A sparse LU of `K` costs
 //! 5–10 Cholesky factorisations of `S` (its symbolic structure is that of `KᵀK`);
 //! the `m` extra right-hand sides cost less (measured: README, "Frictional speed").
+//!
+//! Because `S⁻¹ E` is at hand, a system whose updated rows (and right-hand sides on them)
+//! change is solved again with a dense `m × m` system and no factorisation
+//! ([`SparseSystem::solve_multi_switching`]): the semismooth Newton step of the friction
+//! law switches nodes between pieces of the law that way.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::Solve;
@@ -197,6 +202,26 @@ impl RowUpdates {
     }
 }
 
+/// A change of one updated row of the system ([`SparseSystem::solve_multi_switching`]):
+/// entries added to the row (`(column, value)`) and to the right-hand sides on it (one
+/// value per right-hand side).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RowChange {
+    /// The equation; it must carry a row update.
+    pub row: usize,
+    /// Entries added to the row.
+    pub entries: Vec<(usize, f64)>,
+    /// Value added to each right-hand side on the row.
+    pub rhs: Vec<f64>,
+}
+
+/// `S⁻¹` of the right-hand sides (`z_b`) and of the unit vectors of the updated rows
+/// (`z_e`, in the order of the updates).
+struct WoodburyParts {
+    z_b: Vec<Vec<f64>>,
+    z_e: Vec<Vec<f64>>,
+}
+
 /// CSC matrix with element-to-value maps.
 #[derive(Clone, Debug)]
 pub struct SparseSystem {
@@ -361,7 +386,20 @@ impl SparseSystem {
     /// `y = (I + Vᵀ Z_E)⁻¹ Vᵀ Z_B`, `X = Z_B − Z_E y`; accepted if
     /// `‖K x − b‖ ≤ 10⁻⁸ ‖b‖` for every right-hand side, else LU of `K`.
     fn solve_updated_multi(&mut self, rhs: &mut [Vec<f64>]) -> Result<(), LinSolveError> {
-        let (n, k, m) = (self.n, rhs.len(), self.updates.len());
+        let parts = self.woodbury_parts(rhs)?;
+        match self.woodbury_combine(&parts, rhs, &[]) {
+            Some(solutions) => {
+                rhs.clone_from_slice(&solutions);
+                Ok(())
+            }
+            None => self.lu_solve_updated(rhs),
+        }
+    }
+
+    /// `Z = S⁻¹ [B, E]`: the symmetric solves of the right-hand sides and of the unit
+    /// vectors of the updated rows.
+    fn woodbury_parts(&mut self, rhs: &[Vec<f64>]) -> Result<WoodburyParts, LinSolveError> {
+        let (n, k) = (self.n, rhs.len());
         let mut block: Vec<Vec<f64>> = rhs.to_vec();
         for &r in &self.updates.rows {
             let mut e = vec![0.0; n];
@@ -369,31 +407,67 @@ impl SparseSystem {
             block.push(e);
         }
         self.solve_symmetric_checked(&mut block, k)?;
-        let (z_b, z_e) = block.split_at(k);
+        let z_e = block.split_off(k);
+        Ok(WoodburyParts { z_b: block, z_e })
+    }
+
+    /// The solutions of `(K + Σ e_r Δvᵣᵀ) x = b + Σ e_r Δbᵣ` from `parts` ([`RowChange`]s
+    /// on updated rows only, `Δb` per right-hand side), or `None` if one is not finite or
+    /// its residual exceeds `10⁻⁸ ‖b‖`.
+    fn woodbury_combine(
+        &self,
+        parts: &WoodburyParts,
+        rhs: &[Vec<f64>],
+        changes: &[RowChange],
+    ) -> Option<Vec<Vec<f64>>> {
+        let (k, m) = (rhs.len(), self.updates.len());
+        // the changed rows' extra entries, and the changed right-hand sides through
+        // S⁻¹ (b + E β) = Z_B + Z_E β
+        let mut extra: Vec<&[(usize, f64)]> = vec![&[]; m];
+        let mut z_b = parts.z_b.clone();
+        let mut b = rhs.to_vec();
+        for change in changes {
+            let i = self.updates.slot[change.row];
+            assert!(i != usize::MAX, "a row change on an updated row");
+            extra[i] = &change.entries;
+            for (j, &beta) in change.rhs.iter().enumerate() {
+                b[j][change.row] += beta;
+                z_b[j]
+                    .iter_mut()
+                    .zip(&parts.z_e[i])
+                    .for_each(|(z, e)| *z += beta * e);
+            }
+        }
+        let dot = |i: usize, x: &[f64]| {
+            self.updates.dot(i, x) + extra[i].iter().map(|&(c, v)| v * x[c]).sum::<f64>()
+        };
         let capacitance = Mat::from_fn(m, m, |i, j| {
-            f64::from(u8::from(i == j)) + self.updates.dot(i, &z_e[j])
+            f64::from(u8::from(i == j)) + dot(i, &parts.z_e[j])
         });
-        let projected = Mat::from_fn(m, k, |i, j| self.updates.dot(i, &z_b[j]));
+        let projected = Mat::from_fn(m, k, |i, j| dot(i, &z_b[j]));
         let y = capacitance.partial_piv_lu().solve(&projected);
         let solutions: Vec<Vec<f64>> = (0..k)
             .map(|j| {
                 let mut x = z_b[j].clone();
-                for (i, ze) in z_e.iter().enumerate() {
+                for (i, ze) in parts.z_e.iter().enumerate() {
                     let yi = y[(i, j)];
                     x.iter_mut().zip(ze).for_each(|(xv, zv)| *xv -= yi * zv);
                 }
                 x
             })
             .collect();
-        let accurate = solutions.iter().zip(rhs.iter()).all(|(x, b)| {
-            x.iter().all(|v| v.is_finite())
-                && residual_within(&self.mul_updated(x), b, RESIDUAL_RTOL_SQUARED)
+        let accurate = solutions.iter().zip(&b).all(|(x, bj)| {
+            let mut kx = self.mul_updated(x);
+            for change in changes {
+                kx[change.row] += change.entries.iter().map(|&(c, v)| v * x[c]).sum::<f64>();
+            }
+            x.iter().all(|v| v.is_finite()) && residual_within(&kx, bj, RESIDUAL_RTOL_SQUARED)
         });
-        if accurate {
-            rhs.clone_from_slice(&solutions);
-            return Ok(());
-        }
-        // LU of the full matrix: the updates added into the values for the factorisation
+        accurate.then_some(solutions)
+    }
+
+    /// LU of the full matrix `K`: the updates added into the values for the factorisation.
+    fn lu_solve_updated(&mut self, rhs: &mut [Vec<f64>]) -> Result<(), LinSolveError> {
         let symmetric = self.values.clone();
         for (i, &r) in self.updates.rows.iter().enumerate() {
             for &(c, v) in &self.updates.entries[i] {
@@ -404,6 +478,50 @@ impl SparseSystem {
         let solved = self.lu_solve_multi(rhs);
         self.values = symmetric;
         solved
+    }
+
+    /// Solve `K xⱼ = bⱼ` ([`Self::solve_multi`]), then let `switch` change updated rows of
+    /// the system in view of the solutions: `switch` returns the [`RowChange`]s (relative
+    /// to the assembled `K` and `b`) under which it wants the system solved next, or
+    /// `None` when the solutions it was given are the ones it wants. The changed systems
+    /// reuse the factorisation (Woodbury). At most `max_switches` changed solves; if
+    /// `switch` has not settled by then, or a changed solve is inaccurate, the solutions
+    /// of the assembled system are returned. Returns the number of changed solves.
+    pub fn solve_multi_switching(
+        &mut self,
+        rhs: &mut [Vec<f64>],
+        max_switches: usize,
+        mut switch: impl FnMut(&[Vec<f64>]) -> Option<Vec<RowChange>>,
+    ) -> Result<usize, LinSolveError> {
+        if self.updates.is_empty() {
+            self.solve_symmetric_multi(rhs)?;
+            return Ok(0);
+        }
+        let parts = self.woodbury_parts(rhs)?;
+        let assembled = match self.woodbury_combine(&parts, rhs, &[]) {
+            Some(solutions) => solutions,
+            None => {
+                let mut solutions = rhs.to_vec();
+                self.lu_solve_updated(&mut solutions)?;
+                solutions
+            }
+        };
+        let mut current = assembled.clone();
+        for pass in 0..=max_switches {
+            let Some(changes) = switch(&current) else {
+                rhs.clone_from_slice(&current);
+                return Ok(pass);
+            };
+            if pass == max_switches {
+                break;
+            }
+            match self.woodbury_combine(&parts, rhs, &changes) {
+                Some(solutions) => current = solutions,
+                None => break,
+            }
+        }
+        rhs.clone_from_slice(&assembled);
+        Ok(max_switches)
     }
 
     /// Supernodal sparse Cholesky (AMD ordering, sequential) of the lower triangle
@@ -670,5 +788,63 @@ mod tests {
         sys.clear();
         assert_eq!(sys.updates.len(), 0);
         assert_eq!(sys.get(9, 12), 0.0);
+    }
+
+    /// The switching solve: a [`RowChange`] on an updated row (entries and right-hand
+    /// side) gives the solution of the changed system (dense LU of it), without a new
+    /// factorisation; `switch` sees the assembled solution first, then the changed one;
+    /// a switch that never settles falls back to the assembled solution.
+    #[test]
+    fn switched_solve_matches_dense_lu_of_the_changed_system() {
+        let mut sys = strip();
+        sys.add_to_row(3, 5, 4.0);
+        sys.add_to_row(9, 9, 0.0);
+        let change = RowChange {
+            row: 9,
+            entries: vec![(9, 25.0), (1, -3.0)],
+            rhs: vec![2.0],
+        };
+        let b: Vec<f64> = (0..16).map(|i| ((i * 3) % 7) as f64 - 3.0).collect();
+        let mut changed_b = b.clone();
+        changed_b[9] += 2.0;
+        let dense = Mat::from_fn(16, 16, |r, c| {
+            let extra: f64 = change
+                .entries
+                .iter()
+                .filter(|&&(col, _)| r == 9 && col == c)
+                .map(|&(_, v)| v)
+                .sum();
+            sys.get(r, c) + extra
+        });
+        let reference = dense
+            .partial_piv_lu()
+            .solve(Mat::from_fn(16, 1, |i, _| changed_b[i]));
+        let factorisations = sys.factorisations();
+        let mut seen = 0;
+        let mut x = vec![b.clone()];
+        let passes = sys
+            .solve_multi_switching(&mut x, 4, |_| {
+                seen += 1;
+                (seen == 1).then(|| vec![change.clone()])
+            })
+            .expect("solvable");
+        assert_eq!((passes, seen), (1, 2));
+        assert_eq!(sys.factorisations(), factorisations + 1);
+        for (i, v) in x[0].iter().enumerate() {
+            assert!(
+                (v - reference[(i, 0)]).abs() <= 1e-12 * (1.0 + reference[(i, 0)].abs()),
+                "x[{i}] = {v} vs dense {}",
+                reference[(i, 0)]
+            );
+        }
+        // a switch that never settles: the assembled solution
+        let mut assembled = vec![b.clone()];
+        sys.solve_multi(&mut assembled).expect("solvable");
+        let mut restless = vec![b.clone()];
+        let passes = sys
+            .solve_multi_switching(&mut restless, 3, |_| Some(vec![change.clone()]))
+            .expect("solvable");
+        assert_eq!(passes, 3);
+        assert_eq!(restless, assembled);
     }
 }

@@ -16,7 +16,8 @@
 //!   (locking-free for `κ/G` from 10 to 10⁴);
 //! * [`contact`]: the indenter and exact normal contact by nonlinear elimination on the
 //!   analytic surface in the current configuration, active-set updates;
-//! * [`friction`]: the Coulomb–Orowan law, its return mapping and tangent rows;
+//! * [`friction`]: the Coulomb–Orowan law, its return mapping and tangent rows (under
+//!   either regime, for the semismooth Newton step of `Model::solve_newton`);
 //! * [`model`]: boundary conditions and assembly of the reduced residual/tangent;
 //! * [`solver`]: Newton with line search, the active-set loop, displacement-controlled
 //!   stepping from one contact-edge event to the next;
@@ -165,6 +166,10 @@ pub struct SolveOptions {
     pub bordered_edge_solve: bool,
     /// Use the tangent (Euler) predictor (else extrapolate the last increment).
     pub tangent_predictor: bool,
+    /// With friction, choose each node's stick/slip branch in the Newton step by where
+    /// the step lands (semismooth Newton, `Model::solve_newton`); else the
+    /// branch of the current state.
+    pub semismooth_friction: bool,
     /// Edge search: maximum trial loads per step.
     pub max_edge_iterations: usize,
     /// Maximum active-set updates per load step.
@@ -204,6 +209,7 @@ impl Default for SolveOptions {
             max_edge_iterations: 60,
             bordered_edge_solve: true,
             tangent_predictor: true,
+            semismooth_friction: true,
             residual_rtol: 1e-10,
             loose_residual_rtol: 1e-5,
             residual_atol: 1e-13,

@@ -108,17 +108,23 @@ impl StepFail {
     }
 }
 
-/// The linear solve ([`super::linsys::SparseSystem::solve_multi`]) of a Newton system at
-/// iteration `iteration`; a failure ends the Newton solve.
+/// The linear solve ([`Model::solve_newton`]) of a Newton system at iteration
+/// `iteration`, `direction` mapping its solutions to the step; a failure ends the Newton
+/// solve.
 pub(crate) fn solve_newton_system(
     model: &mut Model,
+    opts: &SolveOptions,
     rhs: &mut [Vec<f64>],
     iteration: usize,
+    direction: impl Fn(&[Vec<f64>]) -> Vec<f64>,
 ) -> Result<(), StepFail> {
-    model.sys.solve_multi(rhs).map_err(|e| StepFail::Linear {
-        iteration,
-        message: e.to_string(),
-    })
+    model
+        .solve_newton(rhs, opts.semismooth_friction, direction)
+        .map(|_| ())
+        .map_err(|e| StepFail::Linear {
+            iteration,
+            message: e.to_string(),
+        })
 }
 
 /// Residual bound of Newton convergence, `rtol · f_e + residual_atol · (G + κ)`, with
@@ -133,7 +139,7 @@ pub(crate) fn residual_tolerance(
     rtol * force_scale + atol
 }
 
-fn l2_norm(v: &[f64]) -> f64 {
+pub(crate) fn l2_norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
@@ -230,7 +236,7 @@ pub(crate) fn newton(
             .assemble(st, true)
             .expect("state assembled above is not inverted");
         let mut rhs = vec![f.resid.iter().map(|r| -r).collect::<Vec<f64>>()];
-        solve_newton_system(model, &mut rhs, it)?;
+        solve_newton_system(model, opts, &mut rhs, it, |x| x[0].clone())?;
         let dq = rhs.pop().expect("one right-hand side");
         if inf_norm(&dq) <= opts.increment_atol {
             // correction below the round-off of the positions: converged
