@@ -884,8 +884,11 @@ mod tests {
     /// contact, moved along it beyond their stick band.
     fn sheared(mu: f64, elastic_slip_over_element: f64) -> (Model, State) {
         let problem = LayerProblem {
+            aspect_ratio: 0.3,
+            thickness_over_lambda: 1.0,
+            kappa_over_g: 1000.0,
+            kinematics: Kinematics::Finite,
             interface: Interface::coulomb_orowan(mu, 0.1, elastic_slip_over_element),
-            ..crate::defaults::layer_problem(0.3)
         };
         let opts = SolveOptions {
             mesh: MeshLevel::Coarse,
