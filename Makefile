@@ -65,7 +65,7 @@ bench-solver:
 
 ## Wall time of every tier of experiments/speed_accuracy.toml (one thread, median of 3 runs), written
 ## to experiments/data/speed_accuracy_timings.csv, the cost axis of figures/speed_accuracy.svg
-## (about 35 minutes; run it on an otherwise idle machine, then `make reproduce` and commit both).
+## (about 8 minutes; run it on an otherwise idle machine, then `make reproduce` and commit both).
 bench-tiers:
 	$(CARGO) build --release --locked
 	$(CARGO) run --release --locked --quiet -- time-tiers
