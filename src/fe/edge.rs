@@ -199,9 +199,15 @@ pub(crate) fn event_gap_tolerance(model: &Model, opts: &SolveOptions, g0: f64) -
 /// `z`: with the load tangent `z` ([`super::solver::load_tangent`]) the rate `∂g_k/∂d` at
 /// which it closes.
 fn gap_rate(model: &Model, st: &State, k: usize, z: &[f64]) -> f64 {
+    gap_rate_along(model, st, k)(z)
+}
+
+/// [`gap_rate`] as a function of `z` alone (it holds what it needs of the model and the
+/// state, so that it can be used while the model is borrowed for a solve).
+fn gap_rate_along(model: &Model, st: &State, k: usize) -> impl Fn(&[f64]) -> f64 {
     let node = model.mesh.bottom[k];
     let (_, dc) = model.edge_constraint(st, k);
-    dc[0] * z[2 * node] + dc[1] * z[2 * node + 1]
+    move |z: &[f64]| dc[0] * z[2 * node] + dc[1] * z[2 * node + 1]
 }
 
 /// Increment of `d` at which free node `k`, at gap `g0`, closes along the load tangent
@@ -283,15 +289,16 @@ pub(crate) fn newton_edge(
             f.resid.iter().map(|r| -r).collect::<Vec<f64>>(),
             f.dresid_dd.iter().map(|r| -r).collect::<Vec<f64>>(),
         ];
-        let node = model.mesh.bottom[k];
-        let (_, dc) = model.edge_constraint(st, k);
-        let rate = |z: &[f64]| dc[0] * z[2 * node] + dc[1] * z[2 * node + 1];
-        solve_newton_system(model, opts, &mut rhs, it, |z| {
-            let dd = -(c + rate(&z[0])) / rate(&z[1]);
-            z[0].iter().zip(&z[1]).map(|(a, b)| a + b * dd).collect()
-        })?;
+        // the bordered step `(δd, δq)` from the two solutions
+        let rate = gap_rate_along(model, st, k);
+        let bordered_step = |z1: &[f64], z2: &[f64]| {
+            let dd = -(c + rate(z1)) / rate(z2);
+            let dq: Vec<f64> = z1.iter().zip(z2).map(|(a, b)| a + b * dd).collect();
+            (dd, dq)
+        };
+        solve_newton_system(model, opts, &mut rhs, it, |z| bordered_step(&z[0], &z[1]).1)?;
         let (z1, z2) = (&rhs[0], &rhs[1]);
-        let den = gap_rate(model, st, k, z2);
+        let den = rate(z2);
         if den.abs() < INSENSITIVE_GAP_RATE {
             return Err(StepFail::Diverged {
                 iteration: it,
@@ -299,8 +306,7 @@ pub(crate) fn newton_edge(
                 reason: "edge constraint insensitive to the slab displacement".into(),
             });
         }
-        let dd = -(c + gap_rate(model, st, k, z1)) / den;
-        let dq: Vec<f64> = z1.iter().zip(z2).map(|(a, b)| a + b * dd).collect();
+        let (dd, dq) = bordered_step(z1, z2);
         let edge_merit = |m: &Model, trial: &State, ft: &super::model::Forces| {
             let (ct, _) = m.edge_constraint(trial, k);
             residual_merit(&ft.resid) + kscale * ct.abs()

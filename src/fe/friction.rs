@@ -287,6 +287,20 @@ impl Branch {
         }
     }
 
+    /// The branch to assume next in the semismooth step for a node assumed on this branch
+    /// whose linearised step lands on `landed`: a sliding node whose step leaves its slip
+    /// branch (for the stick band or the other way) is put on the stick branch and stays
+    /// there; a stick node stays stuck (letting it slide when its step leaves the band made
+    /// the choice cycle or cost more iterations). Each node thus switches at most once, so
+    /// the choice ends.
+    pub(super) fn after_step(self, landed: Branch) -> Branch {
+        if self == Branch::Stick || landed == self {
+            self
+        } else {
+            Branch::Stick
+        }
+    }
+
     /// `φ` and `dφ/dx` of this branch's affine law at `e*` (`dS/dx = w`); on the stick
     /// branch `φ = e*/e_c` also beyond the band (the branch's own affine extension).
     pub(super) fn mobilisation(self, trial_slip: f64, slip_c: f64, w: f64) -> (f64, f64) {
@@ -404,20 +418,6 @@ impl FrictionRow {
             _ if coulomb <= 0.0 => self.at.regime,
             _ if coulomb <= orowan => Regime::Coulomb,
             _ => Regime::Orowan,
-        }
-    }
-
-    /// The branch of the return mapping to assume next in the semismooth step, for a node
-    /// assumed on `assumed` whose linearised step lands on `landed`: a sliding node whose
-    /// step leaves its slip branch (for the stick band or the other way) is put on the
-    /// stick branch and stays there; a stick node stays stuck (letting it slide when its
-    /// step leaves the band made the choice cycle or cost more iterations). Each node thus
-    /// switches at most once, so the choice ends.
-    pub(super) fn next_branch(&self, assumed: Branch, landed: Branch) -> Branch {
-        if assumed == Branch::Stick || landed == assumed {
-            assumed
-        } else {
-            Branch::Stick
         }
     }
 

@@ -375,25 +375,7 @@ impl SparseSystem {
     /// there are no row updates, else the Woodbury solve (see the
     /// [module documentation](self)).
     pub fn solve_multi(&mut self, rhs: &mut [Vec<f64>]) -> Result<(), LinSolveError> {
-        if self.updates.is_empty() {
-            self.solve_symmetric_multi(rhs)
-        } else {
-            self.solve_updated_multi(rhs)
-        }
-    }
-
-    /// Woodbury solve of `(S + E Vᵀ) x = b`: `Z = S⁻¹ [B, E]` in one symmetric solve,
-    /// `y = (I + Vᵀ Z_E)⁻¹ Vᵀ Z_B`, `X = Z_B − Z_E y`; accepted if
-    /// `‖K x − b‖ ≤ 10⁻⁸ ‖b‖` for every right-hand side, else LU of `K`.
-    fn solve_updated_multi(&mut self, rhs: &mut [Vec<f64>]) -> Result<(), LinSolveError> {
-        let parts = self.woodbury_parts(rhs)?;
-        match self.woodbury_combine(&parts, rhs, &[]) {
-            Some(solutions) => {
-                rhs.clone_from_slice(&solutions);
-                Ok(())
-            }
-            None => self.lu_solve_updated(rhs),
-        }
+        self.solve_multi_switching(rhs, 0, |_| None).map(|_| ())
     }
 
     /// `Z = S⁻¹ [B, E]`: the symmetric solves of the right-hand sides and of the unit
@@ -480,8 +462,11 @@ impl SparseSystem {
         solved
     }
 
-    /// Solve `K xⱼ = bⱼ` ([`Self::solve_multi`]), then let `switch` change updated rows of
-    /// the system in view of the solutions: `switch` returns the [`RowChange`]s (relative
+    /// Solve `K xⱼ = bⱼ`: the symmetric chain when there are no row updates, else the
+    /// Woodbury solve `Z = S⁻¹ [B, E]` in one symmetric solve, `y = (I + Vᵀ Z_E)⁻¹ Vᵀ Z_B`,
+    /// `X = Z_B − Z_E y`, accepted if `‖K x − b‖ ≤ 10⁻⁸ ‖b‖` for every right-hand side,
+    /// else LU of `K`. Then let `switch` change updated rows of the system in view of the
+    /// solutions: `switch` returns the [`RowChange`]s (relative
     /// to the assembled `K` and `b`) under which it wants the system solved next, or
     /// `None` when the solutions it was given are the ones it wants. The changed systems
     /// reuse the factorisation (Woodbury). At most `max_switches` changed solves; if

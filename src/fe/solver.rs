@@ -120,7 +120,6 @@ pub(crate) fn solve_newton_system(
 ) -> Result<(), StepFail> {
     model
         .solve_newton(rhs, opts.semismooth_friction, direction)
-        .map(|_| ())
         .map_err(|e| StepFail::Linear {
             iteration,
             message: e.to_string(),
