@@ -48,8 +48,8 @@ stale:
 
 ## The frictional-speed table (README, "Frictional speed"): per default-mesh curve the median wall time of 3 runs,
 ## DOFs, load steps, Newton iterations, factorisations; frictional/frictionless ratio per AR; the Fig. 3 sweep from
-## an empty cache on all cores; the cost growth from mesh 16 to 192 with its exponent and peak memory (about 45
-## minutes, most of it the frictional mesh-192 curve; BENCH_MAX_MESH=128 stops earlier). Then the criterion medians
+## an empty cache on all cores; the cost growth from mesh 16 to 192 with its exponent and peak memory (about 20
+## minutes: 8 to mesh 128, then the mesh-192 curves, 2 and 9 minutes; BENCH_MAX_MESH=128 stops earlier). Then the criterion medians
 ## of the model laws.
 BENCH_MAX_MESH ?= 192
 bench:
