@@ -128,7 +128,9 @@ fn default_elastic_slip_over_element() -> Bounded<Positive> {
     Bounded::trusted(defaults::elastic_slip_over_element())
 }
 /// A [`MeshLevel`] from its name or element count (see [`MeshLevel::ALLOWED`]).
-fn mesh_from_name<'de, D: Deserializer<'de>>(d: D) -> Result<Option<MeshLevel>, D::Error> {
+pub(crate) fn mesh_from_name<'de, D: Deserializer<'de>>(
+    d: D,
+) -> Result<Option<MeshLevel>, D::Error> {
     String::deserialize(d)?
         .parse::<MeshLevel>()
         .map(Some)

@@ -7,9 +7,16 @@
 //! model's full-contact pressure every ridge is in full contact, a = λ/2: the scene records
 //! that state as `full`, it does not clamp the inverse.
 
+use super::fe_cases::{self, FeCase};
+use super::fingertip_fe::{
+    fe_a_over_lambda_at, fe_status, fit_estar_mpa, last_a, outside_fit, ridge_aspect_ratio,
+    FeInverse, FingertipFe,
+};
 use super::scenes::{Scene, SceneContext, SceneResult};
-use super::{measured, model_laws};
-use crate::models::{a_over_lambda_at, InverseError, ModelKind, PressureLaw};
+use super::{measured, model_laws, RunOptions};
+use crate::accuracy::measured::percent;
+use crate::models::{a_over_lambda_at, InverseError, ModelKind, ModelLaw, PressureLaw};
+use crate::numfmt::sig_digits;
 use crate::plot::{padded_range, palette, Figure, LegendPosition, Panel, Series};
 use crate::spec::{
     Bounded, Grid, Location, ModelSelection, NonNegative, Positive, SpecError, Validator,
@@ -42,11 +49,27 @@ pub struct FingertipAreaScene {
     /// Measured points, relative to the spec's folder (schema: `experiments/data/README.md`).
     /// A missing file is reported in the figure and the run's output, never replaced.
     pub measured_data: Option<String>,
+    /// E*_fit: the modulus of the FE sweep the WNL polynomials were fitted at, MPa (R9; default
+    /// `crate::defaults::fe_estar_mpa`): the figure states τ_max/E* against the fitted range.
+    #[serde(default)]
+    pub fit_estar_mpa: Option<Bounded<Positive>>,
+    /// Direct finite-element curves at E* low, central and high (`fingertip_fe`'s table): a
+    /// third band; absent: model lines only.
+    pub fe: Option<FingertipFe>,
 }
 
 impl Scene for FingertipAreaScene {
+    /// One curve per modulus: E* low, central, high.
+    fn fe_cases(&self, opts: &RunOptions) -> Vec<FeCase> {
+        let Some(fe) = &self.fe else { return vec![] };
+        let ar = self.amplitude_mm.get() / self.wavelength_mm.get();
+        self.moduli()
+            .map(|e| fe.case(ar, self.tau_max_mpa.get(), e, opts))
+            .to_vec()
+    }
+
     fn run(&self, ctx: &SceneContext) -> Result<SceneResult> {
-        run(ctx.title, self, ctx.spec_dir)
+        run(ctx.title, self, ctx.spec_dir, ctx.opts)
     }
 
     fn validate(&self, v: &Validator) -> Result<(), SpecError> {
@@ -68,17 +91,21 @@ impl Scene for FingertipAreaScene {
                 allowed: format!("[low, high] with low < estar_mpa = {e} < high"),
             });
         }
-        let ar = self.amplitude_mm.get() / self.wavelength_mm.get();
-        if ar >= 0.5 {
-            return Err(SpecError::Invalid {
-                origin: v.origin.into(),
-                field: "fingertip_area.amplitude_mm".into(),
-                location: Location(None),
-                value: self.amplitude_mm.get().to_string(),
-                allowed: format!("< wavelength_mm / 2 = {}", self.wavelength_mm.get() / 2.0),
-            });
-        }
+        ridge_aspect_ratio(
+            v,
+            "fingertip_area",
+            self.wavelength_mm.get(),
+            self.amplitude_mm.get(),
+        )?;
         Ok(())
+    }
+}
+
+impl FingertipAreaScene {
+    /// E* low, central, high, MPa.
+    fn moduli(&self) -> [f64; 3] {
+        let [lo, hi] = self.estar_band_mpa.map(Bounded::get);
+        [lo, self.estar_mpa.get(), hi]
     }
 }
 
@@ -89,7 +116,12 @@ enum Area {
     Undefined(InverseError),
 }
 
-fn run(title: &str, s: &FingertipAreaScene, spec_dir: &Path) -> Result<SceneResult> {
+fn run(
+    title: &str,
+    s: &FingertipAreaScene,
+    spec_dir: &Path,
+    opts: &RunOptions,
+) -> Result<SceneResult> {
     let lambda_mm = s.wavelength_mm.get();
     let ar = s.amplitude_mm.get() / lambda_mm;
     let radius_mm = (s.nominal_area_mm2.get() / PI).sqrt();
@@ -99,6 +131,7 @@ fn run(title: &str, s: &FingertipAreaScene, spec_dir: &Path) -> Result<SceneResu
     let loads = s.load_n.values();
     let [e_lo, e_hi] = s.estar_band_mpa.map(|v| v.get());
     let e_mid = s.estar_mpa.get();
+    let area_of = |a_over_lambda: f64| 2.0 * a_over_lambda * lambda_mm * ridges * 2.0 * radius_mm;
 
     let laws = model_laws(&s.models, ar, tau);
     let area_at = |law: &dyn PressureLaw, estar_mpa: f64, load_n: f64| -> (f64, Area) {
@@ -106,7 +139,7 @@ fn run(title: &str, s: &FingertipAreaScene, spec_dir: &Path) -> Result<SceneResu
         let area = match a_over_lambda_at(law, p_over_estar) {
             Ok(x) => Area::Partial {
                 a_over_lambda: x,
-                area_mm2: 2.0 * x * lambda_mm * ridges * 2.0 * radius_mm,
+                area_mm2: area_of(x),
             },
             Err(InverseError::AboveFullContact { .. }) => Area::Full {
                 area_mm2: full_area_mm2,
@@ -180,10 +213,10 @@ fn run(title: &str, s: &FingertipAreaScene, spec_dir: &Path) -> Result<SceneResu
             }
             curves.push(pts);
         }
-        let suffix = if extrapolated { ", extrapolated" } else { "" };
+        let suffix = if extrapolated { ", EXTRAPOLATED" } else { "" };
         // Lower modulus → more area: the range runs between the E*-high and E*-low curves.
         // WNL's range is shaded; Westergaard's is drawn as two dashed edges so both stay visible.
-        let range_label = Some(format!("{label}, E* ∈ [{e_lo}, {e_hi}] MPa"));
+        let range_label = Some(format!("{label}, E* ∈ [{e_lo}, {e_hi}] MPa{suffix}"));
         match name {
             ModelKind::Wnl => series.push(Series::band(
                 range_label,
@@ -203,6 +236,103 @@ fn run(title: &str, s: &FingertipAreaScene, spec_dir: &Path) -> Result<SceneResu
             curves[1].clone(),
         ));
     }
+    let mut incomplete = vec![];
+    let mut fe_footer = vec![];
+    if let Some(fe_table) = &s.fe {
+        let outcomes = fe_cases::solve_all(&s.fe_cases(opts), opts)?;
+        let mut curves = vec![];
+        let mut beyond = vec![];
+        for (&estar, fe) in s.moduli().iter().zip(&outcomes) {
+            let status = fe_status(fe);
+            if fe.failure.is_some() {
+                incomplete.push(format!("FE curve E* = {estar} MPa, τ_max = {tau} MPa: {status}"));
+                fe_footer.push(format!("FE at E* = {estar} MPa INCOMPLETE: {status}."));
+            }
+            let mut pts = vec![];
+            for &f in &loads {
+                let p = f / (PI * radius_mm * radius_mm) / estar;
+                let inverse = fe_a_over_lambda_at(&fe.points, p).map_err(|e| {
+                    anyhow::anyhow!("FE curve E* = {estar} MPa, τ_max = {tau} MPa: {e}")
+                })?;
+                let (x, a, state): (Cell, Cell, &str) = match inverse {
+                    FeInverse::Within(x) => {
+                        pts.push((f, area_of(x)));
+                        (x.into(), area_of(x).into(), "partial")
+                    }
+                    FeInverse::Beyond { .. } => {
+                        let state = if fe.failure.is_some() {
+                            "fe_incomplete"
+                        } else {
+                            "beyond_fe"
+                        };
+                        (Cell::Empty, Cell::Empty, state)
+                    }
+                };
+                table.push(vec![
+                    "fe".into(),
+                    estar.into(),
+                    f.into(),
+                    p.into(),
+                    x,
+                    a,
+                    state.into(),
+                    false.into(),
+                ]);
+            }
+            if pts.len() < loads.len() {
+                beyond.push(format!(
+                    "F > {} N at E* = {estar} MPa",
+                    sig_digits(pts.last().map_or(0.0, |p| p.0), 3)
+                ));
+            }
+            curves.push((pts, last_a(fe)));
+        }
+        // The band runs where both its edges are computed; the stiff edge and the central line
+        // go on to their own last points.
+        let n = curves[0].0.len().min(curves[2].0.len());
+        series.push(Series::band(
+            Some(format!("direct FE (ours), E* ∈ [{e_lo}, {e_hi}] MPa")),
+            palette::GREEN,
+            curves[2].0[..n].to_vec(),
+            curves[0].0[..n].to_vec(),
+        ));
+        series.push(Series::dashed(None, palette::GREEN, 1, curves[2].0.clone()));
+        series.push(Series::line(
+            Some(format!("direct FE (ours), E* = {e_mid} MPa")),
+            palette::GREEN,
+            3,
+            curves[1].0.clone(),
+        ));
+        let ends: Vec<(f64, f64)> = curves
+            .iter()
+            .filter(|c| c.0.len() < loads.len())
+            .filter_map(|c| c.0.last().copied())
+            .collect();
+        if !ends.is_empty() {
+            series.push(Series::markers(
+                Some("end of an FE curve (last load on it)".into()),
+                palette::GREEN,
+                6,
+                ends,
+            ));
+        }
+        let reached = curves.iter().map(|c| c.1).fold(f64::INFINITY, f64::min);
+        fe_footer.insert(
+            0,
+            format!(
+                "Direct FE (ours): the same ridges, τ_max = {tau} MPa, loaded to a/λ = {}; every curve reaches a/λ ≥ {} (○: its last point).",
+                fe_table.until_a_over_lambda.get(),
+                sig_digits(reached, 4)
+            ),
+        );
+        if !beyond.is_empty() {
+            fe_footer.push(format!(
+                "Beyond it ({}) the FE area is {}–100 % of full contact: not drawn (CSV state beyond_fe).",
+                beyond.join(", "),
+                percent(2.0 * reached)
+            ));
+        }
+    }
     series.push(Series::dashed(
         Some(format!("full contact, {full_area_mm2:.0} mm²")),
         palette::GREY,
@@ -221,9 +351,29 @@ fn run(title: &str, s: &FingertipAreaScene, spec_dir: &Path) -> Result<SceneResu
         ),
         format!("Mean pressure p̄ = F/(πR²); area 2a·N·2R; τ_max = {tau} MPa enters the WNL polynomials in MPa."),
     ];
-    if laws.iter().any(|(_, l)| l.is_extrapolated()) {
+    footer.extend(fe_footer);
+    let mut panel_title = "Total contact area against normal load".to_string();
+    let fit = fit_estar_mpa(s.fit_estar_mpa);
+    for (_, law) in &laws {
+        let why = outside_fit(law).join(", ");
+        let ModelLaw::Wnl(m) = law else { continue };
+        if why.is_empty() {
+            continue;
+        }
+        let fitted = m.coefficients.domain.tau_max_mpa_max;
+        let ratios = format!(
+            "τ_max/E* = {}–{}",
+            sig_digits(tau / e_hi, 2),
+            sig_digits(tau / e_lo, 2)
+        );
+        panel_title = format!(
+            "{panel_title}: WNL EXTRAPOLATED ({why}; {ratios}, fit ≤ {})",
+            sig_digits(fitted / fit, 2)
+        );
         let note = format!(
-            "WNL is evaluated outside its fit domain (AR = {ar:.3}): an extrapolation, as in the paper."
+            "WNL EXTRAPOLATED, as in the paper: {why} (fit AR {}–{}); {ratios} (fit: τ_max ≤ {fitted} MPa at E* = {fit} MPa).",
+            m.coefficients.domain.aspect_ratio_min,
+            m.coefficients.domain.aspect_ratio_max,
         );
         footer.push(note.clone());
         notes.push(note);
@@ -280,7 +430,7 @@ fn run(title: &str, s: &FingertipAreaScene, spec_dir: &Path) -> Result<SceneResu
             .flat_map(|s| s.points.iter().chain(&s.upper).map(|p| p.1)),
     );
     let panel = Panel {
-        title: "Total contact area against normal load".into(),
+        title: panel_title,
         x_label: "normal load F (N)".into(),
         y_label: "contact area (mm²)".into(),
         x_range: (loads[0], loads[loads.len() - 1]),
@@ -291,7 +441,7 @@ fn run(title: &str, s: &FingertipAreaScene, spec_dir: &Path) -> Result<SceneResu
         legend: Some(LegendPosition::LowerRight),
     };
     let figure = Figure {
-        width: 1100,
+        width: 1240,
         height: 820,
         caption: title.into(),
         grid: (1, 1),
@@ -303,6 +453,6 @@ fn run(title: &str, s: &FingertipAreaScene, spec_dir: &Path) -> Result<SceneResu
         tables: vec![table],
         figure,
         notes,
-        incomplete: vec![],
+        incomplete,
     })
 }

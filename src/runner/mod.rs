@@ -18,6 +18,7 @@ scene_registry! {
     correction_surfaces::CorrectionSurfacesScene,
     fe_vs_model::FeVsModelScene,
     fingertip_area::FingertipAreaScene,
+    fingertip_fe::FingertipFeScene,
     deformed_mesh::DeformedMeshScene,
     table1_refit::Table1RefitScene,
     speed_accuracy::SpeedAccuracyScene,
