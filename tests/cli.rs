@@ -375,6 +375,58 @@ fn solve_with_friction_prints_the_curve_and_rejects_bad_flags() {
 
 /// A reader that closes the pipe early (`wavy eval … | head -1`) ends every command quietly
 /// with exit 0: no panic, no error message.
+/// `wavy solve --unload`: the loading rows, then the unloading rows back to zero load, each
+/// with its branch in a last column; `--unload` with `--error-estimate` is refused.
+#[test]
+fn solve_with_unload_prints_both_branches() {
+    let o = wavy(
+        &[
+            "solve",
+            "--ar",
+            "0.1",
+            "--tau-max-mpa",
+            "0.05",
+            "--mesh",
+            "16",
+            "--until-a-over-lambda",
+            "0.3",
+            "--unload",
+        ],
+        here(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    let mut lines = text.lines();
+    assert!(lines.next().unwrap().ends_with(",active_nodes,branch"));
+    let rows: Vec<(f64, &str)> = lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            (f[1].parse().unwrap(), f[6])
+        })
+        .collect();
+    let turn = rows.iter().position(|r| r.1 == "unloading").unwrap();
+    assert!(turn >= 3 && rows[..turn].iter().all(|r| r.1 == "loading"));
+    assert!(rows[turn..].iter().all(|r| r.1 == "unloading"));
+    let p_max = rows[turn - 1].0;
+    assert!(rows.last().unwrap().0.abs() <= 1e-10 * p_max);
+    let o = wavy(
+        &["solve", "--ar", "0.1", "--unload", "--error-estimate"],
+        here(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--error-estimate"), "{}", stderr(&o));
+    let o = wavy(
+        &["solve", "--ar", "0.1", "--until-p-over-estar", "0"],
+        here(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--until-p-over-estar"),
+        "{}",
+        stderr(&o)
+    );
+}
+
 #[test]
 fn closed_stdout_pipe_ends_quietly_with_exit_0() {
     use std::process::Stdio;

@@ -5,7 +5,9 @@ use anyhow::Result;
 use std::io::{IsTerminal, Write};
 use std::process::ExitCode;
 use wavy::defaults;
-use wavy::fe::{self, CurvePoint, Kinematics, LayerProblem, MeshLevel, SolveOptions};
+use wavy::fe::{
+    self, CurvePoint, Kinematics, LayerProblem, LoadDirection, MeshLevel, SolveOptions,
+};
 use wavy::runner::fe_cases::{FeCase, FePhysics};
 
 /// Arguments of `wavy solve`.
@@ -50,6 +52,15 @@ pub struct SolveArgs {
     /// Load until the contact half-width a/λ reaches this value (in (0, 0.5)).
     #[arg(long, default_value_t = 0.45, allow_hyphen_values = true)]
     pub until_a_over_lambda: f64,
+    /// Instead of a/λ: load until the first step whose mean pressure p̄/E* reaches this
+    /// (> 0); --until-a-over-lambda then caps the contact half-width on the way.
+    #[arg(long, allow_hyphen_values = true)]
+    pub until_p_over_estar: Option<f64>,
+    /// Then unload back to zero load, the friction history carried through: the slab
+    /// retracts through the loading steps' loads in reverse; a last column `branch`
+    /// (loading, unloading) says which branch each row is on.
+    #[arg(long, conflicts_with = "error_estimate")]
+    pub unload: bool,
 }
 
 impl SolveArgs {
@@ -65,6 +76,9 @@ impl SolveArgs {
         if !(x.is_finite() && x > 0.0 && x < 0.5) {
             return Err(out_of_range("--until-a-over-lambda", x, "(0, 0.5)").into());
         }
+        if let Some(p) = self.until_p_over_estar {
+            positive("--until-p-over-estar", p)?;
+        }
         let physics = FePhysics {
             estar_mpa: self.estar_mpa,
             thickness_over_lambda: self.thickness_over_lambda,
@@ -79,6 +93,7 @@ impl SolveArgs {
         };
         let options = SolveOptions {
             until_a_over_lambda: x,
+            until_p_over_estar: self.until_p_over_estar,
             mesh,
             ..SolveOptions::default()
         };
@@ -137,27 +152,37 @@ pub fn solve(args: &SolveArgs, out: &mut impl Write) -> Result<ExitCode> {
             format!(",{}", e.map_or(String::new(), |e| e.to_string()))
         })
     };
-    let header_extra = if coarse.is_some() {
-        ",error_estimate"
-    } else {
-        ""
+    let header_extra = match (coarse.is_some(), args.unload) {
+        (true, _) => ",error_estimate",
+        (false, true) => ",branch",
+        (false, false) => "",
     };
     writeln!(out, "{}{header_extra}", CurvePoint::CSV_HEADER)?;
     let mut write_error = None;
-    let result = fe::solve_curve(&problem, &opts, &mut |p| {
+    let mut on_step = |branch: LoadDirection, p: &CurvePoint| {
         if let Some(b) = &bar {
             b.set_message(format!(
-                "a/λ = {:.4}, p̄/E* = {:.5}",
-                p.a_over_lambda, p.p_over_estar
+                "{}: a/λ = {:.4}, p̄/E* = {:.5}",
+                branch.name(),
+                p.a_over_lambda,
+                p.p_over_estar
             ));
             b.tick();
         }
         if write_error.is_none() {
-            if let Err(e) = writeln!(out, "{}{}", p.csv_row(), estimate(p)) {
+            let extra = match args.unload {
+                true => format!(",{}", branch.name()),
+                false => estimate(p),
+            };
+            if let Err(e) = writeln!(out, "{}{extra}", p.csv_row()) {
                 write_error = Some(e);
             }
         }
-    });
+    };
+    let result = match args.unload {
+        true => fe::solve_cycle(&problem, &opts, &mut on_step),
+        false => fe::solve_curve(&problem, &opts, &mut |p| on_step(LoadDirection::Loading, p)),
+    };
     if let Some(b) = bar {
         b.finish_and_clear();
     }

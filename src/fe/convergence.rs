@@ -157,6 +157,7 @@ pub fn mesh_convergence_levels(
                 allowed,
             },
             points: Vec::new(),
+            unloading: Vec::new(),
         })
     };
     let nx = levels.map(|l| l.counts().0 as f64);

@@ -108,11 +108,36 @@ pub struct SolveWork {
     pub factorisations: usize,
 }
 
+/// The direction of the load on a branch of a loading–unloading cycle; named `loading` and
+/// `unloading` in CSV files.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LoadDirection {
+    /// The slab approaches: the contact grows from first contact to the target.
+    Loading,
+    /// The slab retracts from the target back to zero load.
+    Unloading,
+}
+
+impl LoadDirection {
+    /// The name in CSV files.
+    pub fn name(self) -> &'static str {
+        match self {
+            LoadDirection::Loading => "loading",
+            LoadDirection::Unloading => "unloading",
+        }
+    }
+}
+
 /// A computed load curve.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Curve {
     /// Converged points, in loading order.
     pub points: Vec<CurvePoint>,
+    /// With unloading ([`super::solve_cycle`]): the converged points of the unloading
+    /// branch, from the target back to zero load, in unloading order; empty otherwise.
+    #[serde(default)]
+    pub unloading: Vec<CurvePoint>,
     /// Last converged state.
     pub final_state: DeformedState,
     /// What the curve cost.
@@ -125,6 +150,37 @@ impl Curve {
     pub fn p_at(&self, a_over_lambda: f64) -> Option<f64> {
         p_at(&self.points, a_over_lambda)
     }
+}
+
+/// The work `∮ p̄ dδ` of a loading–unloading cycle per unit ridge length and per wavelength,
+/// over `E* λ²`: `∫ p̄/E* d(d/λ)` along loading minus along unloading (trapezoid rule on the
+/// converged points; the branch from first contact starts at the undeformed state, `p̄ = 0`
+/// at `d = 0`, and the unloading branch ends at zero load, so the loop closes on `p̄ = 0`).
+/// Positive: the cycle dissipates energy.
+pub fn cycle_work_over_estar_lambda2(loading: &[CurvePoint], unloading: &[CurvePoint]) -> f64 {
+    let work = |pts: &mut dyn Iterator<Item = (f64, f64)>| {
+        let mut w = 0.0;
+        let mut last: Option<(f64, f64)> = None;
+        for (d, p) in pts {
+            if let Some((d0, p0)) = last {
+                w += 0.5 * (p + p0) * (d - d0);
+            }
+            last = Some((d, p));
+        }
+        w
+    };
+    let pair = |q: &CurvePoint| (q.slab_displacement_over_lambda, q.p_over_estar);
+    // loading from the undeformed state; unloading from the last loading point, where it starts
+    let w_load = work(&mut std::iter::once((0.0, 0.0)).chain(loading.iter().map(pair)));
+    let w_unload = work(
+        &mut loading
+            .last()
+            .map(pair)
+            .into_iter()
+            .chain(unloading.iter().map(pair)),
+    );
+    // unloading runs toward smaller d, so its integral in the direction of travel is −∫ p̄ dd
+    w_load + w_unload
 }
 
 /// A point whose numbers need every digit of the round-trip form (test fixture).
@@ -143,6 +199,24 @@ pub(crate) fn awkward_point() -> CurvePoint {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A triangle loop: loading along p̄ = d to (1, 1), unloading straight down to (½, 0)
+    /// and along p̄ = 0 back to d = 0 encloses the area ¼.
+    #[test]
+    fn cycle_work_is_the_area_of_the_loop() {
+        let at = |d: f64, p: f64| CurvePoint {
+            slab_displacement_over_lambda: d,
+            p_over_estar: p,
+            ..awkward_point()
+        };
+        let loading = [at(0.5, 0.5), at(1.0, 1.0)];
+        let unloading = [at(0.5, 0.0), at(0.0, 0.0)];
+        assert!((cycle_work_over_estar_lambda2(&loading, &unloading) - 0.25).abs() < 1e-15);
+        assert!((cycle_work_over_estar_lambda2(&loading, &[]) - 0.5).abs() < 1e-15);
+        // the reverse path closes
+        let back = [at(0.5, 0.5), at(0.0, 0.0)];
+        assert!(cycle_work_over_estar_lambda2(&loading, &back).abs() < 1e-15);
+    }
 
     #[test]
     fn csv_row_round_trips_exactly() {

@@ -606,6 +606,29 @@ impl Bracket {
     }
 }
 
+/// The node that plays the edge event's target in a state that is not an event (the
+/// unloading branch): the node after the last one whose vertical contact multiplier `λ` is
+/// clearly positive (above `multiplier_rtol` times the largest), so that the edge lies in the
+/// last loaded element as at an event. At an event state it is the event's node whether or
+/// not the solve left that node, touching with zero force, active; the peak node 0 when no
+/// node carries load; at most the valley node.
+pub(crate) fn loaded_edge_node(
+    model: &Model,
+    st: &State,
+    grad: &[f64],
+    multiplier_rtol: f64,
+) -> usize {
+    let lam = model.multipliers(st, grad);
+    let scale = lam.iter().fold(0.0_f64, |m, l| m.max(l.abs()));
+    match (0..lam.len())
+        .rev()
+        .find(|&i| lam[i] > multiplier_rtol * scale)
+    {
+        Some(i) => (i + 1).min(lam.len() - 1),
+        None => 0,
+    }
+}
+
 /// Contact half-width at an edge event on node `k` (rule documented at [`EdgeRule`]; the
 /// gap fits fall back to the midpoint of `[x_{k−1}, x_k]` unless the gaps of nodes
 /// `k + 1`, `k + 2` are positive and increasing).

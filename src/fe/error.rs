@@ -77,6 +77,40 @@ pub enum SolveError {
         /// The requested `until_a_over_lambda`.
         target: f64,
     },
+    /// An unloading step failed even after the maximum number of step cuts.
+    #[error("unloading stopped at slab displacement d/λ = {slab_displacement_over_lambda:.6e} (next load {target:.6e}) after {cuts} step cuts: {reason}")]
+    UnloadingStalled {
+        /// Slab displacement of the last converged unloading state.
+        slab_displacement_over_lambda: f64,
+        /// The load the failed step aimed at.
+        target: f64,
+        /// Step cuts tried.
+        cuts: usize,
+        /// The last attempt's failure.
+        reason: String,
+    },
+    /// Contact persisted with a positive mean pressure while the slab retracted as far
+    /// beyond its starting position as it had been pressed in.
+    #[error("unloading: contact persists at d/λ = {slab_displacement_over_lambda:.6e} with p̄/E* = {p_over_estar:.3e} ({active_nodes} nodes in contact)")]
+    ContactPersists {
+        /// Slab displacement reached.
+        slab_displacement_over_lambda: f64,
+        /// Mean pressure there.
+        p_over_estar: f64,
+        /// Contact-face nodes still in contact.
+        active_nodes: usize,
+    },
+    /// The contact half-width reached its limit before the mean pressure reached its
+    /// target ([`super::SolveOptions::until_p_over_estar`]).
+    #[error("the contact half-width reached its limit a/λ = {a_over_lambda:.4} at p̄/E* = {p_over_estar:.4}, short of the target p̄/E* = {target:.4}; raise until_a_over_lambda or lower the target")]
+    PressureTargetBeyondLimit {
+        /// Contact half-width reached.
+        a_over_lambda: f64,
+        /// Mean pressure reached.
+        p_over_estar: f64,
+        /// The requested `until_p_over_estar`.
+        target: f64,
+    },
     /// The load-step budget was exhausted before reaching the target contact width.
     #[error("maximum number of load steps ({steps}) reached at a/λ = {a_over_lambda:.4}")]
     TooManySteps {
@@ -94,6 +128,9 @@ pub struct CurveFailure {
     /// What stopped the solve.
     #[source]
     pub error: SolveError,
-    /// Points converged so far.
+    /// Points converged so far (loading branch).
     pub points: Vec<super::CurvePoint>,
+    /// Points converged on the unloading branch before the failure (empty when it failed
+    /// while loading, or when no unloading was asked for).
+    pub unloading: Vec<super::CurvePoint>,
 }

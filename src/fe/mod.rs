@@ -20,14 +20,16 @@
 //!   either regime, for the semismooth Newton step of `Model::solve_newton`);
 //! * [`model`]: boundary conditions and assembly of the reduced residual/tangent;
 //! * [`solver`]: Newton with line search, the active-set loop, displacement-controlled
-//!   stepping from one contact-edge event to the next;
+//!   stepping from one contact-edge event to the next, and the unloading branch of a
+//!   loading–unloading cycle ([`solve_cycle`]);
 //! * [`edge`]: the edge events (the load at which the next contact-face node touches,
 //!   bordered Newton solve with `d` as unknown, secant fallback) and the contact-edge
 //!   location;
 //! * [`linsys`]: the sparse direct solves through faer (the fallback chain of the
 //!   factorisations is described there);
 //! * [`shear_test`]: a block pressed onto a flat and sheared, verifying the friction law;
-//! * [`curve`]: the computed curve (points, last deformed state) and the CSV row of a point;
+//! * [`curve`]: the computed curve (points, unloading points, last deformed state), the CSV
+//!   row of a point, and the work of a cycle;
 //! * [`error`]: why a curve could not be completed, with the points converged before;
 //! * [`convergence`]: interpolation of curves at fixed `a/λ` and the mesh-convergence
 //!   (Richardson) table.
@@ -57,7 +59,10 @@ pub use convergence::{
     convergence_table, mesh_convergence, mesh_convergence_levels, p_at, ConvergenceRow,
     ConvergenceTable,
 };
-pub use curve::{Curve, CurvePoint, CurvePointParseError, DeformedState, SolveWork};
+pub use curve::{
+    cycle_work_over_estar_lambda2, Curve, CurvePoint, CurvePointParseError, DeformedState,
+    LoadDirection, SolveWork,
+};
 pub use edge::{EdgeRule, DISCRETE_EDGE_FRACTION};
 pub use error::{CurveFailure, SolveError};
 pub use friction::{CoulombOrowan, Interface};
@@ -127,6 +132,11 @@ pub struct LayerProblem {
 pub struct SolveOptions {
     /// Stop once the contact half-width reaches this `a/λ` (in `(0, ½)`).
     pub until_a_over_lambda: f64,
+    /// Instead: load until the mean pressure `p̄/E*` is this (> 0): the last point is the
+    /// state at this load (within 10⁻⁹ relative), not an edge event; `until_a_over_lambda`
+    /// is then the largest contact half-width allowed on the way (a curve that reaches it
+    /// first is incomplete).
+    pub until_p_over_estar: Option<f64>,
     /// Mesh resolution.
     pub mesh: MeshLevel,
     /// Mesh grading.
@@ -193,6 +203,7 @@ impl Default for SolveOptions {
     fn default() -> Self {
         Self {
             until_a_over_lambda: 0.45,
+            until_p_over_estar: None,
             mesh: MeshLevel::Default,
             grading: Grading::default(),
             edge_rule: EdgeRule::default(),
@@ -283,6 +294,9 @@ pub fn validate(problem: &LayerProblem, opts: &SolveOptions) -> Result<(), Solve
             "> 0",
         )?;
     }
+    if let Some(p) = opts.until_p_over_estar {
+        check_range("until_p_over_estar", p, p > 0.0, "> 0")?;
+    }
     check_range("da_target", opts.da_target, opts.da_target >= 0.0, ">= 0")?;
     if let EdgeRule::Fraction(phi) = opts.edge_rule {
         check_range(
@@ -339,13 +353,39 @@ pub fn solve_curve(
     opts: &SolveOptions,
     on_step: &mut dyn FnMut(&CurvePoint),
 ) -> Result<Curve, Box<CurveFailure>> {
+    let (mut model, estar) = validated_model(problem, opts)?;
+    solver::trace(&mut model, opts, estar, on_step)
+}
+
+/// The model of a validated problem and `E*/G`, or the input error as a failed curve.
+fn validated_model(
+    problem: &LayerProblem,
+    opts: &SolveOptions,
+) -> Result<(model::Model, f64), Box<CurveFailure>> {
     if let Err(error) = validate(problem, opts) {
         return Err(Box::new(CurveFailure {
             error,
             points: Vec::new(),
+            unloading: Vec::new(),
         }));
     }
-    let mut model = build_model(problem, opts);
-    let estar = estar_over_g(problem.kappa_over_g);
-    solver::trace(&mut model, opts, estar, on_step)
+    Ok((
+        build_model(problem, opts),
+        estar_over_g(problem.kappa_over_g),
+    ))
+}
+
+/// A loading–unloading cycle: the load curve as [`solve_curve`], then the unloading branch
+/// from `opts.until_a_over_lambda` back to zero load, with the friction history carried
+/// through ([`Curve::unloading`]; the stepping is described at `solver::unload`).
+///
+/// `on_step` is called with every converged point and its branch. On failure the error
+/// comes with the points of both branches converged so far.
+pub fn solve_cycle(
+    problem: &LayerProblem,
+    opts: &SolveOptions,
+    on_step: &mut dyn FnMut(LoadDirection, &CurvePoint),
+) -> Result<Curve, Box<CurveFailure>> {
+    let (mut model, estar) = validated_model(problem, opts)?;
+    solver::trace_cycle(&mut model, opts, estar, on_step)
 }

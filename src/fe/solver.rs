@@ -23,7 +23,7 @@
 use super::edge::{self, newton_edge, EventSearch};
 use super::error::{CurveFailure, SolveError};
 use super::model::{Forces, Model, State};
-use super::{Curve, CurvePoint, DeformedState, EdgeRule, Kinematics, SolveOptions};
+use super::{Curve, CurvePoint, DeformedState, EdgeRule, Kinematics, LoadDirection, SolveOptions};
 
 /// Sufficient-decrease constant `c` of the backtracking line search, in the energy
 /// Armijo test `Π(α) ≤ Π₀ + c α r·δ` and in the merit test `m(α) < (1 − c α) m₀`: the
@@ -348,6 +348,15 @@ pub(crate) fn equilibrate(
     })
 }
 
+/// The modelled width, half a wavelength (units of λ): the mean pressure is a force over it.
+const HALF_WAVELENGTH: f64 = 0.5;
+
+/// `p̄/E*` from the contact tractions: the vertical components of the contact forces, which
+/// at equilibrium are the internal forces `∂Π/∂y` of the active nodes, over half a wavelength.
+fn mean_pressure_over_estar(model: &Model, st: &State, grad: &[f64], estar: f64) -> f64 {
+    model.multipliers(st, grad).iter().sum::<f64>() / HALF_WAVELENGTH / estar
+}
+
 /// Measured quantities of a converged state whose contact edge is node `edge`.
 pub(crate) fn measure(
     model: &mut Model,
@@ -359,12 +368,8 @@ pub(crate) fn measure(
     let f = model
         .assemble(st, false)
         .expect("converged state is not inverted");
-    // p̄ from the contact tractions: the vertical components of the contact forces, which
-    // at equilibrium are the internal forces ∂Π/∂y of the active nodes.
-    let lam = model.multipliers(st, &f.grad);
-    let half = 0.5;
-    let p_tr = lam.iter().sum::<f64>() / half / estar;
-    let p_re = model.slab_reaction(&f.grad) / half / estar;
+    let p_tr = mean_pressure_over_estar(model, st, &f.grad, estar);
+    let p_re = model.slab_reaction(&f.grad) / HALF_WAVELENGTH / estar;
     (
         CurvePoint {
             a_over_lambda: edge::edge_position(model, st, edge, rule),
@@ -517,7 +522,18 @@ impl LoadPath {
         Box::new(CurveFailure {
             error,
             points: self.points,
+            unloading: Vec::new(),
         })
+    }
+
+    /// The curve: the loading points, `unloading`, and the last converged state.
+    fn finish(self, model: &Model, estar: f64, unloading: Vec<CurvePoint>) -> Curve {
+        Curve {
+            final_state: deformed_state(model, &self.cur, &self.grad, estar),
+            points: self.points,
+            unloading,
+            work: model.work(),
+        }
     }
 }
 
@@ -529,9 +545,46 @@ pub(crate) fn trace(
     estar: f64,
     on_step: &mut dyn FnMut(&CurvePoint),
 ) -> Result<Curve, Box<CurveFailure>> {
+    let path = load(model, opts, estar, on_step)?;
+    Ok(path.finish(model, estar, Vec::new()))
+}
+
+/// Trace the loading branch as [`trace`], then unload back to zero load with the friction
+/// history carried through ([`unload`]); `on_step` sees every converged point with its
+/// branch.
+pub(crate) fn trace_cycle(
+    model: &mut Model,
+    opts: &SolveOptions,
+    estar: f64,
+    on_step: &mut dyn FnMut(LoadDirection, &CurvePoint),
+) -> Result<Curve, Box<CurveFailure>> {
+    let mut path = load(model, opts, estar, &mut |p| {
+        on_step(LoadDirection::Loading, p)
+    })?;
+    let unloading = unload(model, opts, estar, &mut path, &mut |p| {
+        on_step(LoadDirection::Unloading, p)
+    })?;
+    Ok(path.finish(model, estar, unloading))
+}
+
+/// The loading branch: from first contact, one edge event per point, until the contact
+/// half-width reaches `opts.until_a_over_lambda` (or, with `opts.until_p_over_estar`, until
+/// the mean pressure reaches that: the event that would overshoot it is replaced by the
+/// state on the target, [`land_on_pressure`]).
+fn load(
+    model: &mut Model,
+    opts: &SolveOptions,
+    estar: f64,
+    on_step: &mut dyn FnMut(&CurvePoint),
+) -> Result<LoadPath, Box<CurveFailure>> {
     let mut path = LoadPath::start(model, opts);
     let mut step = 1;
-    while path.a < opts.until_a_over_lambda {
+    // reached when loading landed on it (within its tolerance, so possibly a hair below)
+    let pressure_reached = |path: &LoadPath| match (opts.until_p_over_estar, path.points.last()) {
+        (Some(target), Some(p)) => p.p_over_estar >= target * (1.0 - PRESSURE_TARGET_RTOL),
+        _ => false,
+    };
+    while path.a < opts.until_a_over_lambda && !pressure_reached(&path) {
         if step > opts.max_steps {
             let error = SolveError::TooManySteps {
                 steps: opts.max_steps,
@@ -577,21 +630,271 @@ pub(crate) fn trace(
         model.commit_slip(&mut st);
         let (mut point, grad) = measure(model, &st, estar, k, opts.edge_rule);
         point.newton_iterations = iters;
+        if let Some(target) = opts.until_p_over_estar.filter(|&t| point.p_over_estar > t) {
+            // the event overshoots the pressure target: land on it between the last
+            // converged state and this event instead
+            let event = (st.d, point.p_over_estar);
+            match land_on_pressure(model, opts, estar, &path, k, event, target) {
+                Ok((st, mut point, grad, it)) => {
+                    point.newton_iterations = iters + it;
+                    on_step(&point);
+                    path.advance(st, point, grad, None);
+                    break;
+                }
+                Err(f) => return Err(path.fail(f.into_error(step, event.0))),
+            }
+        }
         on_step(&point);
         path.advance(st, point, grad, extrapolated);
         step += 1;
     }
-    if path.a < opts.until_a_over_lambda {
+    if let Some(target) = opts.until_p_over_estar {
+        if !pressure_reached(&path) && path.a >= opts.until_a_over_lambda {
+            let error = SolveError::PressureTargetBeyondLimit {
+                a_over_lambda: path.a,
+                p_over_estar: path.points.last().map_or(0.0, |p| p.p_over_estar),
+                target,
+            };
+            return Err(path.fail(error));
+        }
+    }
+    if path.a < opts.until_a_over_lambda && !pressure_reached(&path) {
         let error = SolveError::TargetBeyondMesh {
             a_over_lambda: path.a,
             target: opts.until_a_over_lambda,
         };
         return Err(path.fail(error));
     }
-    let final_state = deformed_state(model, &path.cur, &path.grad, estar);
-    Ok(Curve {
-        points: path.points,
-        final_state,
-        work: model.work(),
+    Ok(path)
+}
+
+/// Relative tolerance on `p̄/E*` of the landing on a pressure target
+/// ([`SolveOptions::until_p_over_estar`]): far below the solver's other errors (the
+/// discretisation's ~10⁻³), far above the round-off of the summed contact forces.
+const PRESSURE_TARGET_RTOL: f64 = 1e-9;
+
+/// Most trial loads of the landing on a pressure target (regula falsi on a monotone
+/// `p̄(d)` converges in a handful; a safeguard).
+const MAX_PRESSURE_TRIALS: usize = 40;
+
+/// The state at which `p̄/E*` equals `target`, between the last converged state of `path`
+/// (below the target) and the edge event `(d, p̄/E*)` (above it): regula falsi on the slab
+/// displacement (Illinois variant), each trial a displacement-controlled step with the
+/// friction history of the last converged state, equilibrated with its active set and the
+/// event's `node` kept free; a trial that fails is halved (at most `max_step_cuts` times). Returns the state (slip committed), its
+/// point (the edge in the last loaded element, [`edge::loaded_edge_node`]), its forces and
+/// the Newton iterations spent.
+fn land_on_pressure(
+    model: &mut Model,
+    opts: &SolveOptions,
+    estar: f64,
+    path: &LoadPath,
+    node: usize,
+    event: (f64, f64),
+    target: f64,
+) -> Result<(State, CurvePoint, Vec<f64>, usize), StepFail> {
+    let below = (
+        path.cur.d,
+        path.points.last().map_or(0.0, |p| p.p_over_estar),
+    );
+    let (mut lo, mut hi) = (below, event);
+    // each trial starts from the converged trial nearest below the target (its friction
+    // history is still the last converged state's: only the starting point moves)
+    let mut start = path.cur.clone();
+    let mut iters = 0;
+    let mut cuts = 0;
+    let mut side = 0; // Illinois: which end stayed put last time
+    let mut next = lo.0 + (target - lo.1) * (hi.0 - lo.0) / (hi.1 - lo.1);
+    for _ in 0..MAX_PRESSURE_TRIALS {
+        let d = next;
+        let tangent = tangent_at(model, opts, &start);
+        let trial =
+            predictor(model, &start, None, d - start.d, tangent.as_deref()).map(|mut st| {
+                st.d = d;
+                model.enforce_constraints(&mut st);
+                // the event's node touches only at the event: below it, it stays free (as in
+                // the event search)
+                equilibrate(model, &mut st, opts, Some(node), None).map(|it| (st, it))
+            });
+        let (st, it) = match trial {
+            Some(Ok(converged)) => converged,
+            failed => {
+                // halve the step from the start, as often as a load step may be cut
+                if cuts == opts.max_step_cuts {
+                    return Err(match failed {
+                        Some(Err(f)) => f,
+                        _ => StepFail::Inverted {
+                            iteration: 0,
+                            residual: f64::NAN,
+                        },
+                    });
+                }
+                cuts += 1;
+                next = 0.5 * (start.d + d);
+                continue;
+            }
+        };
+        iters += it;
+        let f = model
+            .assemble(&st, false)
+            .expect("converged state is not inverted");
+        let p = mean_pressure_over_estar(model, &st, &f.grad, estar);
+        if (p - target).abs() <= PRESSURE_TARGET_RTOL * target {
+            let mut st = st;
+            model.commit_slip(&mut st);
+            let edge = edge::loaded_edge_node(model, &st, &f.grad, opts.multiplier_rtol);
+            let (point, grad) = measure(model, &st, estar, edge, opts.edge_rule);
+            return Ok((st, point, grad, iters));
+        }
+        if p < target {
+            lo = (d, p);
+            start = st;
+            if side == -1 {
+                hi.1 = target + 0.5 * (hi.1 - target);
+            }
+            side = -1;
+        } else {
+            hi = (d, p);
+            if side == 1 {
+                lo.1 = target - 0.5 * (target - lo.1);
+            }
+            side = 1;
+        }
+        next = lo.0 + (target - lo.1) * (hi.0 - lo.0) / (hi.1 - lo.1);
+    }
+    Err(StepFail::Diverged {
+        iteration: iters,
+        residual: f64::NAN,
+        reason: format!(
+            "the load with p̄/E* = {target} was not found in {MAX_PRESSURE_TRIALS} trials"
+        ),
     })
+}
+
+/// The unloading branch from the loaded state of `path` back to zero load.
+///
+/// Displacement-controlled: the slab retracts through the loads of the loading events in
+/// reverse, then to `d = 0`, so that a frictionless (reversible) cycle revisits the loading
+/// states and the two branches can be compared point by point. Each step predicts along the
+/// load tangent, equilibrates (nodes whose normal force turns tensile are released, the
+/// return mapping carries the slip history, committed after every step) and is measured
+/// with the edge in the last loaded element, as at the loading events
+/// ([`edge::loaded_edge_node`]). A step
+/// that fails is halved (at most `max_step_cuts` times in a row; the intermediate states
+/// are points too). When contact remains at `d = 0` with a positive mean pressure (slip
+/// locked in by friction; "positive" meaning above `residual_rtol` times the largest load,
+/// the round-off of the summed contact forces), the slab goes on retracting by the first event's increment until
+/// the last node lets go; contact still held once the slab is as far out as it had been
+/// pressed in is an error.
+fn unload(
+    model: &mut Model,
+    opts: &SolveOptions,
+    estar: f64,
+    path: &mut LoadPath,
+    on_step: &mut dyn FnMut(&CurvePoint),
+) -> Result<Vec<CurvePoint>, Box<CurveFailure>> {
+    let loads: Vec<f64> = path
+        .points
+        .iter()
+        .map(|p| p.slab_displacement_over_lambda)
+        .collect();
+    let d_max = path.cur.d;
+    let retract_increment = loads.first().copied().unwrap_or(d_max);
+    // targets as a stack: the next one last
+    let mut targets: Vec<f64> = vec![0.0];
+    targets.extend(loads.iter().take(loads.len().saturating_sub(1)));
+    let mut points: Vec<CurvePoint> = Vec::new();
+    let fail = |path: &LoadPath, points: Vec<CurvePoint>, error: SolveError| {
+        Box::new(CurveFailure {
+            error,
+            points: path.points.clone(),
+            unloading: points,
+        })
+    };
+    let mut cuts = 0;
+    let mut steps = 0;
+    let mut cur_p = path.points.last().map_or(0.0, |p| p.p_over_estar);
+    // zero load: the round-off of p̄ relative to the largest load of the cycle
+    let p_max = cur_p;
+    loop {
+        let Some(&target) = targets.last() else {
+            // at d = 0 or beyond: done when no contact force is left
+            let active = path.cur.active.iter().filter(|&&b| b).count();
+            if cur_p <= opts.residual_rtol * p_max || active == 0 {
+                break;
+            }
+            let next = path.cur.d - retract_increment;
+            if next < -d_max {
+                let error = SolveError::ContactPersists {
+                    slab_displacement_over_lambda: path.cur.d,
+                    p_over_estar: cur_p,
+                    active_nodes: active,
+                };
+                return Err(fail(path, points, error));
+            }
+            targets.push(next);
+            continue;
+        };
+        steps += 1;
+        if steps > opts.max_steps {
+            let error = SolveError::TooManySteps {
+                steps: opts.max_steps,
+                a_over_lambda: path.a,
+            };
+            return Err(fail(path, points, error));
+        }
+        let tangent = tangent_at(model, opts, &path.cur);
+        let attempt = match predictor(
+            model,
+            &path.cur,
+            None,
+            target - path.cur.d,
+            tangent.as_deref(),
+        ) {
+            None => Err(StepFail::Inverted {
+                iteration: 0,
+                residual: f64::NAN,
+            }),
+            Some(mut st) => {
+                // exactly the target load (cur.d + (target − cur.d) may differ in the last bit),
+                // so that a reversible cycle revisits the loading branch's loads
+                st.d = target;
+                model.enforce_constraints(&mut st);
+                equilibrate(model, &mut st, opts, None, None).map(|it| (st, it))
+            }
+        };
+        match attempt {
+            Ok((mut st, iters)) => {
+                model.commit_slip(&mut st);
+                let f = model
+                    .assemble(&st, false)
+                    .expect("converged state is not inverted");
+                let edge = edge::loaded_edge_node(model, &st, &f.grad, opts.multiplier_rtol);
+                let (mut point, grad) = measure(model, &st, estar, edge, opts.edge_rule);
+                point.newton_iterations = iters;
+                on_step(&point);
+                cur_p = point.p_over_estar;
+                path.a = point.a_over_lambda;
+                path.grad = grad;
+                path.prev = Some(std::mem::replace(&mut path.cur, st));
+                points.push(point);
+                targets.pop();
+                cuts = 0;
+            }
+            Err(_) if cuts < opts.max_step_cuts => {
+                cuts += 1;
+                targets.push(0.5 * (path.cur.d + target));
+            }
+            Err(f) => {
+                let error = SolveError::UnloadingStalled {
+                    slab_displacement_over_lambda: path.cur.d,
+                    target,
+                    cuts,
+                    reason: f.into_error(steps, target).to_string(),
+                };
+                return Err(fail(path, points, error));
+            }
+        }
+    }
+    Ok(points)
 }

@@ -163,6 +163,31 @@ pub struct Panel {
     pub log_scale: (bool, bool),
 }
 
+impl Panel {
+    /// A panel of the mean pressure p̄/E* (linear axes, legend upper left) against `x_label`
+    /// over `x_range`, its y range padded around every series' points.
+    pub fn mean_pressure(
+        title: String,
+        x_label: &str,
+        x_range: (f64, f64),
+        series: Vec<Series>,
+        notes: Vec<String>,
+    ) -> Panel {
+        let y_range = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
+        Panel {
+            title,
+            x_label: x_label.into(),
+            y_label: "p̄/E*".into(),
+            x_range,
+            y_range,
+            series,
+            notes,
+            log_scale: (false, false),
+            legend: Some(LegendPosition::UpperLeft),
+        }
+    }
+}
+
 /// A figure: a caption, a `rows × cols` grid of panels (row-major) and footer lines.
 #[derive(Debug, Clone)]
 pub struct Figure {

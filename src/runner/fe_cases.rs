@@ -38,6 +38,16 @@ pub fn coarser_cases(cases: &[FeCase]) -> Vec<Option<(FeCase, f64)>> {
         .collect()
 }
 
+/// `cases`, followed, when `error_estimate` is set, by each of them on the next coarser mesh
+/// (those that have one, [`coarser_cases`]).
+pub fn with_coarser_cases(mut cases: Vec<FeCase>, error_estimate: bool) -> Vec<FeCase> {
+    if error_estimate {
+        let coarse = coarser_cases(&cases);
+        cases.extend(coarse.into_iter().flatten().map(|(c, _)| c));
+    }
+    cases
+}
+
 /// Every case's curve, from the cache or computed (in parallel, whatever the run's shard).
 pub fn solve_all(cases: &[FeCase], opts: &RunOptions) -> Result<Vec<FeOutcome>> {
     let unsharded = sweep::SweepOptions {
@@ -149,6 +159,8 @@ pub struct FeCase {
     pub estar_mpa: f64,
     pub tau_max_mpa: f64,
     pub friction_coefficient: f64,
+    /// Also unload from the target back to zero load (`fe::solve_cycle`).
+    pub unload: bool,
 }
 
 impl FeCase {
@@ -177,18 +189,34 @@ impl FeCase {
             estar_mpa: physics.estar_mpa,
             tau_max_mpa,
             friction_coefficient: physics.friction_coefficient,
+            unload: false,
+        }
+    }
+
+    /// This case as a loading–unloading cycle: loaded to its target, then unloaded to zero
+    /// load.
+    pub fn with_unloading(self) -> Self {
+        FeCase {
+            unload: true,
+            ..self
         }
     }
 
     /// Runs the solver.
     pub fn solve(&self) -> FeOutcome {
-        match fe::solve_curve(&self.problem, &self.options, &mut |_| {}) {
+        let result = match self.unload {
+            true => fe::solve_cycle(&self.problem, &self.options, &mut |_, _| {}),
+            false => fe::solve_curve(&self.problem, &self.options, &mut |_| {}),
+        };
+        match result {
             Ok(curve) => FeOutcome {
                 points: curve.points,
+                unloading: curve.unloading,
                 failure: None,
             },
             Err(f) => FeOutcome {
                 points: f.points.clone(),
+                unloading: f.unloading.clone(),
                 failure: Some(f.error.to_string()),
             },
         }
@@ -198,15 +226,21 @@ impl FeCase {
 impl SweepCase for FeCase {
     fn key_text(&self) -> String {
         // Debug prints every field, floats in shortest round-trip form: exact.
+        let kind = if self.unload { "cycle" } else { "curve" };
         format!(
-            "wavy fe curve\nsolver source sha256 {FE_SOURCE_SHA256}\nproblem {:?}\noptions {:?}\nestar_mpa {:?} tau_max_mpa {:?} friction_coefficient {:?}",
+            "wavy fe {kind}\nsolver source sha256 {FE_SOURCE_SHA256}\nproblem {:?}\noptions {:?}\nestar_mpa {:?} tau_max_mpa {:?} friction_coefficient {:?}",
             self.problem, self.options, self.estar_mpa, self.tau_max_mpa, self.friction_coefficient
         )
     }
 
     fn label(&self) -> String {
+        let cycle = if self.unload {
+            ", loading–unloading"
+        } else {
+            ""
+        };
         format!(
-            "AR = {}, τ_max = {} MPa",
+            "AR = {}, τ_max = {} MPa{cycle}",
             self.problem.aspect_ratio, self.tau_max_mpa
         )
     }
@@ -227,10 +261,16 @@ impl SweepCase for FeCase {
 /// A computed curve, complete or not.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FeOutcome {
+    /// The loading branch.
     pub points: Vec<CurvePoint>,
+    /// The unloading branch of a cycle ([`FeCase::with_unloading`]); empty otherwise.
+    pub unloading: Vec<CurvePoint>,
     /// The solver's error when it stopped before the target a/λ.
     pub failure: Option<String>,
 }
+
+/// The line of the cache text between the loading and the unloading rows.
+const UNLOADING_LINE: &str = "unloading";
 
 impl Cacheable for FeOutcome {
     fn to_cache_text(&self) -> String {
@@ -248,6 +288,14 @@ impl Cacheable for FeOutcome {
             s.push_str(&p.csv_row());
             s.push('\n');
         }
+        if !self.unloading.is_empty() {
+            s.push_str(UNLOADING_LINE);
+            s.push('\n');
+            for p in &self.unloading {
+                s.push_str(&p.csv_row());
+                s.push('\n');
+            }
+        }
         s
     }
 
@@ -261,10 +309,21 @@ impl Cacheable for FeOutcome {
         if lines.next()? != CurvePoint::CSV_HEADER {
             return None;
         }
-        let points = lines
-            .map(|l| l.parse().ok())
-            .collect::<Option<Vec<CurvePoint>>>()?;
-        Some(FeOutcome { points, failure })
+        let rows: Vec<&str> = lines.collect();
+        let (loading, unloading) = match rows.iter().position(|&l| l == UNLOADING_LINE) {
+            Some(i) => (&rows[..i], &rows[i + 1..]),
+            None => (&rows[..], &[][..]),
+        };
+        let parse = |rows: &[&str]| {
+            rows.iter()
+                .map(|l| l.parse().ok())
+                .collect::<Option<Vec<CurvePoint>>>()
+        };
+        Some(FeOutcome {
+            points: parse(loading)?,
+            unloading: parse(unloading)?,
+            failure,
+        })
     }
 }
 
@@ -276,11 +335,14 @@ mod tests {
     fn cache_text_round_trips_exactly() {
         let p = crate::fe::curve::awkward_point();
         for failure in [None, Some("Newton diverged at load step 3".to_string())] {
-            let o = FeOutcome {
-                points: vec![p, p],
-                failure,
-            };
-            assert_eq!(FeOutcome::from_cache_text(&o.to_cache_text()), Some(o));
+            for unloading in [vec![], vec![p]] {
+                let o = FeOutcome {
+                    points: vec![p, p],
+                    unloading,
+                    failure: failure.clone(),
+                };
+                assert_eq!(FeOutcome::from_cache_text(&o.to_cache_text()), Some(o));
+            }
         }
         assert_eq!(
             FeOutcome::from_cache_text("status ok\nwrong header\n"),

@@ -5,7 +5,7 @@ use super::fe_cases::{self, FeCase, FeOutcome};
 use super::scenes::{Scene, SceneContext, SceneResult};
 use super::{model_laws, RunOptions};
 use crate::models::{ModelKind, ModelLaw, PressureLaw};
-use crate::plot::{padded_range, palette, Figure, LegendPosition, Panel, Series};
+use crate::plot::{palette, Figure, Panel, Series};
 use crate::spec::{
     Bounded, FeSection, Grid, ModelSelection, NonNegative, Positive, SpecError, Validator,
     A_OVER_LAMBDA_ALLOWED,
@@ -35,12 +35,8 @@ impl Scene for FeVsModelScene {
     fn fe_cases(&self, opts: &RunOptions) -> Vec<FeCase> {
         let Some(fe) = &self.fe else { return vec![] };
         let ars: Vec<f64> = self.aspect_ratios.iter().map(|a| a.get()).collect();
-        let mut cases = fe_cases::section_cases(fe, &ars, opts);
-        if fe.error_estimate {
-            let coarse = fe_cases::coarser_cases(&cases);
-            cases.extend(coarse.into_iter().flatten().map(|(c, _)| c));
-        }
-        cases
+        let cases = fe_cases::section_cases(fe, &ars, opts);
+        fe_cases::with_coarser_cases(cases, fe.error_estimate)
     }
 
     fn run(&self, ctx: &SceneContext) -> Result<SceneResult> {
@@ -323,21 +319,16 @@ fn run(title: &str, s: &FeVsModelScene, opts: &RunOptions) -> Result<SceneResult
                     pts,
                 ));
             }
-            let y = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
             if extrapolated {
                 panel_notes.push("WNL extrapolated".into());
             }
-            panels.push(Panel {
-                title: format!("AR = {ar}, τ_max = {tau} MPa"),
-                x_label: "a/λ".into(),
-                y_label: "p̄/E*".into(),
-                x_range: (xs[0], xs[xs.len() - 1]),
-                y_range: y,
+            panels.push(Panel::mean_pressure(
+                format!("AR = {ar}, τ_max = {tau} MPa"),
+                "a/λ",
+                (xs[0], xs[xs.len() - 1]),
                 series,
-                notes: panel_notes,
-                log_scale: (false, false),
-                legend: Some(LegendPosition::UpperLeft),
-            });
+                panel_notes,
+            ));
         }
     }
 

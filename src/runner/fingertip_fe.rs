@@ -21,7 +21,7 @@ use crate::fe::convergence::p_at;
 use crate::fe::{CurvePoint, Kinematics, MeshLevel, SolveOptions};
 use crate::models::{ModelKind, ModelLaw, PressureLaw};
 use crate::numfmt::sig_digits;
-use crate::plot::{padded_range, palette, Figure, LegendPosition, Panel, Series};
+use crate::plot::{palette, Figure, Panel, Series};
 use crate::spec::{
     mesh_from_name, Bounded, Grid, ModelSelection, NonNegative, OpenHalfWidth, Positive,
     SpecError, Validator, A_OVER_LAMBDA_ALLOWED,
@@ -609,18 +609,13 @@ fn run(title: &str, s: &FingertipFeScene, opts: &RunOptions) -> Result<SceneResu
                 Series::line(label, l.color, 2, pts)
             });
         }
-        let y = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
-        figure_panels.push(Panel {
-            title: name,
-            x_label: "a/λ".into(),
-            y_label: "p̄/E*".into(),
-            x_range: (xs[0], xs[xs.len() - 1]),
-            y_range: y,
+        figure_panels.push(Panel::mean_pressure(
+            name,
+            "a/λ",
+            (xs[0], xs[xs.len() - 1]),
             series,
-            notes: panel_notes,
-            log_scale: (false, false),
-            legend: Some(LegendPosition::UpperLeft),
-        });
+            panel_notes,
+        ));
     }
 
     let (e0, e1) = (error_xs[0], error_xs[error_xs.len() - 1]);

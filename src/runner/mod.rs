@@ -22,6 +22,7 @@ scene_registry! {
     deformed_mesh::DeformedMeshScene,
     table1_refit::Table1RefitScene,
     speed_accuracy::SpeedAccuracyScene,
+    hysteresis::HysteresisScene,
 }
 
 pub use atomic_write::write_atomic;

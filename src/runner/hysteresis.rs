@@ -1,0 +1,502 @@
+//! Beyond the paper: loading–unloading cycles of the finite-strain frictional model, and the
+//! energy each dissipates (docs/replication.md R12).
+//!
+//! Every case loads to its target and unloads back to zero load with the slip history carried
+//! through (`fe::solve_cycle`). The dissipated energy per cycle, per unit length of ridge and
+//! per wavelength, is `W = ∮ p̄ dδ` over `E* λ²` (`fe::cycle_work_over_estar_lambda2`), δ the
+//! slab's approach. Two checks run on every result, and a violation fails the run: a
+//! frictionless loop closes, `|W| ≤ CLOSURE_RTOL · W_load`, and no loop creates energy,
+//! `W ≥ −CLOSURE_RTOL · W_load` (`W_load = ∫ p̄ dδ` along loading).
+
+use super::fe_cases::{self, FeCase, FeOutcome, FePhysics};
+use super::scenes::{Scene, SceneContext, SceneResult};
+use super::RunOptions;
+use crate::fe::{cycle_work_over_estar_lambda2, CurvePoint, LoadDirection};
+use crate::plot::{padded_range, palette, Figure, LegendPosition, Panel, Series};
+use crate::spec::{Bounded, FeSection, NonNegative, Positive, SpecError, Validator};
+use crate::table::{Cell, Table};
+use anyhow::{bail, Result};
+use serde::Deserialize;
+
+/// Largest `|W| / W_load` of a loop that closes: the unloading branch revisits the loading
+/// branch's loads, so a reversible loop differs from zero only by the solver's tolerance
+/// (residual 10⁻¹⁰ of the largest nodal force: measured |W|/W_load ≤ 10⁻¹¹ at AR 0.3, and
+/// 5·10⁻⁹ at AR 0.001 where halved unloading steps add points the loading branch does not
+/// have). The same bound is the round-off allowance of "no loop creates energy".
+pub const CLOSURE_RTOL: f64 = 1e-6;
+
+/// Loading–unloading cycles: p̄–a loops per aspect ratio and shear strength, their
+/// dissipated energy, and a confinement series (layer thickness) at one case.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HysteresisScene {
+    /// Aspect ratios Δ/λ: one loop panel each, one dissipation line each.
+    pub aspect_ratios: Vec<Bounded<Positive>>,
+    /// The finite-element physics, the loops' shear strengths (`tau_max_mpa`, at `estar_mpa`)
+    /// and the load target (`until_a_over_lambda`); with `error_estimate`, every loop is also
+    /// solved on the next coarser mesh for a Richardson estimate of its dissipation.
+    pub fe: FeSection,
+    /// Loops at several layer thicknesses (absent: none).
+    pub confinement: Option<Confinement>,
+}
+
+/// The confinement series: one case at several layer thicknesses, loaded to a mean pressure
+/// (a thin, nearly incompressible layer stiffens sharply, so a common contact width is out of
+/// reach of the thinnest).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Confinement {
+    /// Aspect ratio Δ/λ.
+    pub aspect_ratio: Bounded<Positive>,
+    /// Shear strength, MPa (at the FE section's `estar_mpa`).
+    pub tau_max_mpa: Bounded<NonNegative>,
+    /// Layer thicknesses h/λ.
+    pub thickness_over_lambda: Vec<Bounded<Positive>>,
+    /// Load to the first step whose p̄/E* reaches this; the FE section's
+    /// `until_a_over_lambda` caps a/λ on the way.
+    pub until_p_over_estar: Bounded<Positive>,
+}
+
+/// The two series of loops of the scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum LoopSeries {
+    /// Over aspect ratio and shear strength, at the FE section's layer thickness.
+    AspectRatio,
+    /// Over layer thickness, at one case.
+    Confinement,
+}
+
+impl LoopSeries {
+    /// The name in the CSV tables.
+    fn name(self) -> &'static str {
+        match self {
+            LoopSeries::AspectRatio => "aspect_ratio",
+            LoopSeries::Confinement => "confinement",
+        }
+    }
+}
+
+/// One loop of the scene: its case and which series it belongs to.
+struct Loop {
+    case: FeCase,
+    series: LoopSeries,
+}
+
+impl HysteresisScene {
+    fn loops(&self, opts: &RunOptions) -> Vec<Loop> {
+        let ars: Vec<f64> = self.aspect_ratios.iter().map(|a| a.get()).collect();
+        let mut loops: Vec<Loop> = fe_cases::section_cases(&self.fe, &ars, opts)
+            .into_iter()
+            .map(|c| Loop {
+                case: c.with_unloading(),
+                series: LoopSeries::AspectRatio,
+            })
+            .collect();
+        if let Some(c) = &self.confinement {
+            let ar = c.aspect_ratio.get();
+            let mut options = self.fe.options(&[ar], opts.fe_mesh_override);
+            options.until_p_over_estar = Some(c.until_p_over_estar.get());
+            for h in &c.thickness_over_lambda {
+                let physics = FePhysics {
+                    thickness_over_lambda: h.get(),
+                    ..FePhysics::from(&self.fe)
+                };
+                let case = FeCase::new(&physics, ar, c.tau_max_mpa.get(), options);
+                loops.push(Loop {
+                    case: case.with_unloading(),
+                    series: LoopSeries::Confinement,
+                });
+            }
+        }
+        loops
+    }
+}
+
+impl Scene for HysteresisScene {
+    /// Every loop; with `error_estimate`, then each on the next coarser mesh.
+    fn fe_cases(&self, opts: &RunOptions) -> Vec<FeCase> {
+        let cases = self.loops(opts).into_iter().map(|l| l.case).collect();
+        fe_cases::with_coarser_cases(cases, self.fe.error_estimate)
+    }
+
+    fn run(&self, ctx: &SceneContext) -> Result<SceneResult> {
+        run(ctx.title, self, ctx.opts)
+    }
+
+    fn validate(&self, v: &Validator) -> Result<(), SpecError> {
+        v.non_empty("hysteresis.aspect_ratios", self.aspect_ratios.len())?;
+        let ars: Vec<f64> = self.aspect_ratios.iter().map(|a| a.get()).collect();
+        v.fe_section("hysteresis.fe", &self.fe, None, &ars)?;
+        if let Some(c) = &self.confinement {
+            v.non_empty(
+                "hysteresis.confinement.thickness_over_lambda",
+                c.thickness_over_lambda.len(),
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// The dissipation of one loop, with the loading work and the mesh-convergence estimate.
+struct Dissipation {
+    loading_work: f64,
+    work: f64,
+    /// On the next coarser mesh, with the Richardson estimate of the fine value's error.
+    coarse: Option<(f64, f64)>,
+}
+
+fn loading_work(points: &[CurvePoint]) -> f64 {
+    cycle_work_over_estar_lambda2(points, &[])
+}
+
+fn run(title: &str, s: &HysteresisScene, opts: &RunOptions) -> Result<SceneResult> {
+    let loops = s.loops(opts);
+    let all_cases = s.fe_cases(opts);
+    let all_outcomes = fe_cases::solve_all(&all_cases, opts)?;
+    let outcome_of = |case: &FeCase| -> Option<&FeOutcome> {
+        all_cases
+            .iter()
+            .zip(&all_outcomes)
+            .find(|(k, _)| k.problem == case.problem && k.options == case.options && k.unload)
+            .map(|(_, o)| o)
+    };
+    let order = match s.fe.error_estimate {
+        true => Some(crate::accuracy::measured::committed()?.fe_order()?),
+        false => None,
+    };
+    let estar = s.fe.estar_mpa.get();
+
+    let mut points = Table::new(
+        "",
+        &[
+            "series",
+            "aspect_ratio",
+            "tau_max_over_estar",
+            "thickness_over_lambda",
+            "branch",
+            "a_over_lambda",
+            "p_over_estar",
+            "slab_displacement_over_lambda",
+        ],
+    );
+    let mut dissipation_header = vec![
+        "series",
+        "aspect_ratio",
+        "tau_max_over_estar",
+        "thickness_over_lambda",
+        "peak_a_over_lambda",
+        "peak_p_over_estar",
+        "loading_work_over_estar_lambda2",
+        "dissipation_over_estar_lambda2",
+        "dissipated_fraction",
+    ];
+    if order.is_some() {
+        dissipation_header.extend([
+            "dissipation_coarse_mesh",
+            "dissipation_richardson",
+            "dissipation_error_estimate",
+        ]);
+    }
+    dissipation_header.push("status");
+    let mut dissipation = Table::new("dissipation", &dissipation_header);
+    let mut incomplete = vec![];
+    let mut results: Vec<(&Loop, &FeOutcome, Option<Dissipation>)> = vec![];
+    for l in &loops {
+        let c = &l.case;
+        let o = outcome_of(c).expect("every loop was solved");
+        let (ar, h) = (c.problem.aspect_ratio, c.problem.thickness_over_lambda);
+        let tau_e = c.tau_max_mpa / estar;
+        let label = format!("AR = {ar}, τ_max/E* = {tau_e}, h/λ = {h}");
+        for (branch, pts) in [
+            (LoadDirection::Loading, &o.points),
+            (LoadDirection::Unloading, &o.unloading),
+        ] {
+            for p in pts {
+                points.push(vec![
+                    l.series.name().into(),
+                    ar.into(),
+                    tau_e.into(),
+                    h.into(),
+                    branch.name().into(),
+                    p.a_over_lambda.into(),
+                    p.p_over_estar.into(),
+                    p.slab_displacement_over_lambda.into(),
+                ]);
+            }
+        }
+        let peak = o.points.last();
+        let mut row: Vec<Cell> = vec![
+            l.series.name().into(),
+            ar.into(),
+            tau_e.into(),
+            h.into(),
+            peak.map(|p| p.a_over_lambda).into(),
+            peak.map(|p| p.p_over_estar).into(),
+        ];
+        let d = match &o.failure {
+            Some(f) => {
+                let (branch, reached) = match o.unloading.last() {
+                    Some(p) => ("unloading", p.p_over_estar),
+                    None => ("loading", peak.map_or(0.0, |p| p.p_over_estar)),
+                };
+                incomplete.push(format!(
+                    "loop {label} stopped while {branch} at p̄/E* = {reached:.4}: {f}"
+                ));
+                row.extend([Cell::Empty, Cell::Empty, Cell::Empty]);
+                if order.is_some() {
+                    row.extend([Cell::Empty, Cell::Empty, Cell::Empty]);
+                }
+                row.push(format!("incomplete ({branch}): {f}").into());
+                None
+            }
+            None => {
+                let w_load = loading_work(&o.points);
+                let w = cycle_work_over_estar_lambda2(&o.points, &o.unloading);
+                let reversible = c.tau_max_mpa == 0.0;
+                if reversible && w.abs() > CLOSURE_RTOL * w_load {
+                    bail!("the frictionless loop {label} does not close: dissipated W/(E*λ²) = {w:.3e}, beyond {CLOSURE_RTOL:e} of the loading work {w_load:.4e}");
+                }
+                if w < -CLOSURE_RTOL * w_load {
+                    bail!("the loop {label} creates energy: W/(E*λ²) = {w:.3e} < 0 beyond {CLOSURE_RTOL:e} of the loading work {w_load:.4e}");
+                }
+                let coarse = order.and_then(|order| {
+                    let (coarse_case, ratio) = fe_cases::coarser_cases(std::slice::from_ref(c))
+                        .pop()
+                        .flatten()?;
+                    let co = outcome_of(&coarse_case.with_unloading())?;
+                    if co.failure.is_some() {
+                        return None;
+                    }
+                    let wc = cycle_work_over_estar_lambda2(&co.points, &co.unloading);
+                    Some((wc, (w - wc) / (ratio.powf(order) - 1.0)))
+                });
+                row.extend([w_load.into(), w.into(), (w / w_load).into()]);
+                if order.is_some() {
+                    match coarse {
+                        Some((wc, delta)) => {
+                            row.extend([wc.into(), (w + delta).into(), delta.abs().into()])
+                        }
+                        None => row.extend([Cell::Empty, Cell::Empty, Cell::Empty]),
+                    }
+                }
+                row.push("complete".into());
+                Some(Dissipation {
+                    loading_work: w_load,
+                    work: w,
+                    coarse,
+                })
+            }
+        };
+        dissipation.push(row);
+        results.push((l, o, d));
+    }
+
+    let figure = figure(title, s, &results, order)?;
+    let notes = incomplete.clone();
+    Ok(SceneResult {
+        tables: vec![points, dissipation],
+        figure,
+        notes,
+        incomplete,
+    })
+}
+
+/// `(x, y)` of the points of both branches of `o`, loading then unloading.
+fn branch_points(
+    o: &FeOutcome,
+    x: impl Fn(&CurvePoint) -> f64,
+) -> [(LoadDirection, Vec<(f64, f64)>); 2] {
+    let xy = |pts: &[CurvePoint]| pts.iter().map(|p| (x(p), p.p_over_estar)).collect();
+    [
+        (LoadDirection::Loading, xy(&o.points)),
+        (LoadDirection::Unloading, xy(&o.unloading)),
+    ]
+}
+
+/// A loop as two series: loading solid (with `label`), unloading dashed.
+fn loop_series(
+    label: Option<String>,
+    color: plotters::style::RGBColor,
+    branches: [(LoadDirection, Vec<(f64, f64)>); 2],
+) -> Vec<Series> {
+    branches
+        .into_iter()
+        .map(|(dir, pts)| match dir {
+            LoadDirection::Loading => Series::line(label.clone(), color, 2, pts),
+            LoadDirection::Unloading => Series::dashed(None, color, 2, pts),
+        })
+        .collect()
+}
+
+fn figure(
+    title: &str,
+    s: &HysteresisScene,
+    results: &[(&Loop, &FeOutcome, Option<Dissipation>)],
+    order: Option<f64>,
+) -> Result<Figure> {
+    let estar = s.fe.estar_mpa.get();
+    let taus: Vec<f64> = s.fe.tau_max_mpa.iter().map(|t| t.get()).collect();
+    let color_of_tau = |tau: f64| {
+        let i = taus.iter().position(|&t| t == tau).unwrap_or(0);
+        palette::CYCLE[i % palette::CYCLE.len()]
+    };
+    let main: Vec<_> = results
+        .iter()
+        .filter(|(l, _, _)| l.series == LoopSeries::AspectRatio)
+        .collect();
+    let fmt_w = |d: &Option<Dissipation>| match d {
+        None => "incomplete".to_string(),
+        Some(d) if d.work.abs() <= CLOSURE_RTOL * d.loading_work => "W ≈ 0 (closes)".into(),
+        Some(d) => format!(
+            "W/W_load = {}",
+            crate::accuracy::measured::percent(d.work / d.loading_work)
+        ),
+    };
+    let mut panels = vec![];
+    // one p̄–a loop panel per aspect ratio
+    for ar in s.aspect_ratios.iter().map(|a| a.get()) {
+        let mut series = vec![];
+        for (l, o, d) in main.iter().filter(|(l, _, _)| l.case.problem.aspect_ratio == ar) {
+            let tau = l.case.tau_max_mpa;
+            let label = format!("τ_max/E* = {}: {}", tau / estar, fmt_w(d));
+            series.extend(loop_series(
+                Some(label),
+                color_of_tau(tau),
+                branch_points(o, |p| p.a_over_lambda),
+            ));
+        }
+        panels.push(loop_panel(format!("AR = {ar}: p̄–a loops"), "a/λ", series));
+    }
+    // dissipation against τ_max/E*, one line per aspect ratio
+    let mut series = vec![];
+    for (i, ar) in s.aspect_ratios.iter().map(|a| a.get()).enumerate() {
+        let pts: Vec<(f64, f64)> = main
+            .iter()
+            .filter(|(l, _, _)| l.case.problem.aspect_ratio == ar)
+            .filter_map(|(l, _, d)| Some((l.case.tau_max_mpa / estar, d.as_ref()?.work)))
+            .collect();
+        let color = palette::CYCLE[i % palette::CYCLE.len()];
+        series.push(Series::line(Some(format!("AR = {ar}")), color, 2, pts.clone()));
+        series.push(Series::markers(None, color, 4, pts));
+    }
+    let x_max = taus.iter().fold(0.0_f64, |m, &t| m.max(t / estar));
+    let mut mesh_note = None;
+    if let Some(order) = order {
+        let largest = main
+            .iter()
+            .filter_map(|(_, _, d)| {
+                let d = d.as_ref()?;
+                Some(d.coarse?.1.abs() / d.loading_work)
+            })
+            .fold(0.0_f64, f64::max);
+        mesh_note = Some(format!(
+            "Mesh error of W (Richardson from the next coarser mesh, order {order:.2}): at most {} of the loading work over the aspect-ratio loops; per loop in the dissipation table.",
+            crate::accuracy::measured::percent(largest)
+        ));
+    }
+    panels.push(Panel {
+        title: "Dissipated energy per cycle".into(),
+        x_label: "τ_max/E*".into(),
+        y_label: "W/(E* λ²)".into(),
+        x_range: (0.0, x_max.max(f64::MIN_POSITIVE)),
+        y_range: padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1))),
+        series,
+        notes: vec![],
+        log_scale: (false, false),
+        legend: Some(LegendPosition::UpperRight),
+    });
+    // the p̄–δ loops of the largest aspect ratio: their area is W
+    let ar_max = s
+        .aspect_ratios
+        .iter()
+        .map(|a| a.get())
+        .fold(0.0_f64, f64::max);
+    let mut series = vec![];
+    // colours as in the p̄–a panels: no second legend
+    for (l, o, _) in main.iter().filter(|(l, _, _)| l.case.problem.aspect_ratio == ar_max) {
+        let tau = l.case.tau_max_mpa;
+        series.extend(loop_series(
+            None,
+            color_of_tau(tau),
+            branch_points(o, |p| p.slab_displacement_over_lambda),
+        ));
+    }
+    panels.push(Panel {
+        legend: None,
+        ..loop_panel(
+            format!("AR = {ar_max}: p̄–δ loops (area = W; colours as above)"),
+            "δ/λ",
+            series,
+        )
+    });
+    // confinement: p̄–δ loops per layer thickness
+    if let Some(c) = &s.confinement {
+        let mut series = vec![];
+        let conf = results.iter().filter(|(l, _, _)| l.series == LoopSeries::Confinement);
+        for (i, (l, o, d)) in conf.enumerate() {
+            series.extend(loop_series(
+                Some(format!(
+                    "h/λ = {}: {}",
+                    l.case.problem.thickness_over_lambda,
+                    fmt_w(d)
+                )),
+                palette::CYCLE[i % palette::CYCLE.len()],
+                branch_points(o, |p| p.slab_displacement_over_lambda),
+            ));
+        }
+        panels.push(loop_panel(
+            format!(
+                "Confinement: AR = {}, τ_max/E* = {}, to p̄/E* = {}",
+                c.aspect_ratio.get(),
+                c.tau_max_mpa.get() / estar,
+                c.until_p_over_estar.get()
+            ),
+            "δ/λ",
+            series,
+        ));
+    }
+    let columns = 3;
+    let rows = panels.len().div_ceil(columns);
+    let case = &main
+        .first()
+        .map(|(l, _, _)| &l.case)
+        .ok_or_else(|| anyhow::anyhow!("the scene has no loop"))?;
+    let (nx, ny) = case.options.mesh.counts();
+    let mut footer = vec![
+        format!(
+            "Solid: loading to a/λ = {}; dashed: unloading to zero load (slip history carried through). Finite strain, neo-Hookean κ/G = {}, h/λ = {} (but in the confinement panel), E* = {estar} MPa, μ = {}, mesh {nx}×{ny}.",
+            s.fe.until_a_over_lambda.get(),
+            s.fe.kappa_over_g.get(),
+            s.fe.thickness_over_lambda.get(),
+            s.fe.friction_coefficient.get()
+        ),
+        format!(
+            "W = ∮ p̄ dδ/(E* λ²), the energy dissipated per cycle, per wavelength and unit ridge length. Checked on every loop: frictionless loops close and no loop creates energy, within {CLOSURE_RTOL:e} of the loading work W_load."
+        ),
+    ];
+    footer.extend(mesh_note);
+    let stopped = results.iter().filter(|(_, _, d)| d.is_none()).count();
+    if stopped > 0 {
+        footer.push(format!(
+            "INCOMPLETE loops ({stopped}): labelled `incomplete`, drawn as far as they got; see the status column of the dissipation table."
+        ));
+    }
+    Ok(Figure {
+        width: 430 * columns as u32,
+        height: 430 * rows as u32 + 150,
+        caption: title.into(),
+        grid: (rows, columns),
+        panels,
+        footer,
+        font_px: 15,
+    })
+}
+
+fn loop_panel(title: String, x_label: &str, series: Vec<Series>) -> Panel {
+    let x = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.0)));
+    Panel {
+        // the loops rise to the upper right: the lower right is free
+        legend: Some(LegendPosition::LowerRight),
+        ..Panel::mean_pressure(title, x_label, x, series, vec![])
+    }
+}
