@@ -52,8 +52,9 @@ pub struct SolveArgs {
     /// Load until the contact half-width a/λ reaches this value (in (0, 0.5)).
     #[arg(long, default_value_t = 0.45, allow_hyphen_values = true)]
     pub until_a_over_lambda: f64,
-    /// Instead of a/λ: load until the first step whose mean pressure p̄/E* reaches this
-    /// (> 0); --until-a-over-lambda then caps the contact half-width on the way.
+    /// Instead of a/λ: load until the mean pressure p̄/E* is this (> 0; the last loading row
+    /// is the state at that load); --until-a-over-lambda then caps the contact half-width on
+    /// the way.
     #[arg(long, allow_hyphen_values = true)]
     pub until_p_over_estar: Option<f64>,
     /// Then unload back to zero load, the friction history carried through: the slab

@@ -668,6 +668,44 @@ fn load(
     Ok(path)
 }
 
+/// A displacement-controlled step from the converged state `from` to the slab displacement
+/// `d` (exactly: `from.d + (d − from.d)` may differ from `d` in the last bit): predicted along
+/// the load tangent of `from`, then equilibrated with its active set, node `exclude` kept
+/// free. Returns the state (slip not committed) and the Newton iterations.
+fn displacement_step(
+    model: &mut Model,
+    opts: &SolveOptions,
+    from: &State,
+    d: f64,
+    exclude: Option<usize>,
+) -> Result<(State, usize), StepFail> {
+    let tangent = tangent_at(model, opts, from);
+    let mut st =
+        predictor(model, from, None, d - from.d, tangent.as_deref()).ok_or(StepFail::Inverted {
+            iteration: 0,
+            residual: f64::NAN,
+        })?;
+    st.d = d;
+    model.enforce_constraints(&mut st);
+    let iters = equilibrate(model, &mut st, opts, exclude, None)?;
+    Ok((st, iters))
+}
+
+/// [`measure`] for a converged state that is not an edge event: the edge in the last loaded
+/// element ([`edge::loaded_edge_node`]).
+fn measure_between_events(
+    model: &mut Model,
+    st: &State,
+    estar: f64,
+    opts: &SolveOptions,
+) -> (CurvePoint, Vec<f64>) {
+    let f = model
+        .assemble(st, false)
+        .expect("converged state is not inverted");
+    let edge = edge::loaded_edge_node(model, st, &f.grad, opts.multiplier_rtol);
+    measure(model, st, estar, edge, opts.edge_rule)
+}
+
 /// Relative tolerance on `p̄/E*` of the landing on a pressure target
 /// ([`SolveOptions::until_p_over_estar`]): far below the solver's other errors (the
 /// discretisation's ~10⁻³), far above the round-off of the summed contact forces.
@@ -681,9 +719,9 @@ const MAX_PRESSURE_TRIALS: usize = 40;
 /// (below the target) and the edge event `(d, p̄/E*)` (above it): regula falsi on the slab
 /// displacement (Illinois variant), each trial a displacement-controlled step with the
 /// friction history of the last converged state, equilibrated with its active set and the
-/// event's `node` kept free; a trial that fails is halved (at most `max_step_cuts` times). Returns the state (slip committed), its
-/// point (the edge in the last loaded element, [`edge::loaded_edge_node`]), its forces and
-/// the Newton iterations spent.
+/// event's `node` kept free ([`displacement_step`]); a trial that fails is halved (at most
+/// `max_step_cuts` times). Returns the state (slip committed), its point
+/// ([`measure_between_events`]), its forces and the Newton iterations spent.
 fn land_on_pressure(
     model: &mut Model,
     opts: &SolveOptions,
@@ -707,27 +745,14 @@ fn land_on_pressure(
     let mut next = lo.0 + (target - lo.1) * (hi.0 - lo.0) / (hi.1 - lo.1);
     for _ in 0..MAX_PRESSURE_TRIALS {
         let d = next;
-        let tangent = tangent_at(model, opts, &start);
-        let trial =
-            predictor(model, &start, None, d - start.d, tangent.as_deref()).map(|mut st| {
-                st.d = d;
-                model.enforce_constraints(&mut st);
-                // the event's node touches only at the event: below it, it stays free (as in
-                // the event search)
-                equilibrate(model, &mut st, opts, Some(node), None).map(|it| (st, it))
-            });
-        let (st, it) = match trial {
-            Some(Ok(converged)) => converged,
-            failed => {
+        // the event's node touches only at the event: below it, it stays free (as in the
+        // event search)
+        let (st, it) = match displacement_step(model, opts, &start, d, Some(node)) {
+            Ok(converged) => converged,
+            Err(f) => {
                 // halve the step from the start, as often as a load step may be cut
                 if cuts == opts.max_step_cuts {
-                    return Err(match failed {
-                        Some(Err(f)) => f,
-                        _ => StepFail::Inverted {
-                            iteration: 0,
-                            residual: f64::NAN,
-                        },
-                    });
+                    return Err(f);
                 }
                 cuts += 1;
                 next = 0.5 * (start.d + d);
@@ -742,8 +767,7 @@ fn land_on_pressure(
         if (p - target).abs() <= PRESSURE_TARGET_RTOL * target {
             let mut st = st;
             model.commit_slip(&mut st);
-            let edge = edge::loaded_edge_node(model, &st, &f.grad, opts.multiplier_rtol);
-            let (point, grad) = measure(model, &st, estar, edge, opts.edge_rule);
+            let (point, grad) = measure_between_events(model, &st, estar, opts);
             return Ok((st, point, grad, iters));
         }
         if p < target {
@@ -777,14 +801,14 @@ fn land_on_pressure(
 /// reverse, then to `d = 0`, so that a frictionless (reversible) cycle revisits the loading
 /// states and the two branches can be compared point by point. Each step predicts along the
 /// load tangent, equilibrates (nodes whose normal force turns tensile are released, the
-/// return mapping carries the slip history, committed after every step) and is measured
-/// with the edge in the last loaded element, as at the loading events
-/// ([`edge::loaded_edge_node`]). A step
-/// that fails is halved (at most `max_step_cuts` times in a row; the intermediate states
-/// are points too). When contact remains at `d = 0` with a positive mean pressure (slip
-/// locked in by friction; "positive" meaning above `residual_rtol` times the largest load,
-/// the round-off of the summed contact forces), the slab goes on retracting by the first event's increment until
-/// the last node lets go; contact still held once the slab is as far out as it had been
+/// return mapping carries the slip history, committed after every step;
+/// [`displacement_step`]) and is measured with the edge in the last loaded element, as at the
+/// loading events ([`measure_between_events`]). A step that fails is halved (at most
+/// `max_step_cuts` times in a row; the intermediate states are points too). When contact
+/// remains at `d = 0` with a positive mean pressure (slip locked in by friction; "positive"
+/// meaning above `residual_rtol` times the largest load, the round-off of the summed contact
+/// forces), the slab goes on retracting by the first event's increment until the last node
+/// lets go; contact still held once the slab is as far out as it had been
 /// pressed in is an error.
 fn unload(
     model: &mut Model,
@@ -843,34 +867,11 @@ fn unload(
             };
             return Err(fail(path, points, error));
         }
-        let tangent = tangent_at(model, opts, &path.cur);
-        let attempt = match predictor(
-            model,
-            &path.cur,
-            None,
-            target - path.cur.d,
-            tangent.as_deref(),
-        ) {
-            None => Err(StepFail::Inverted {
-                iteration: 0,
-                residual: f64::NAN,
-            }),
-            Some(mut st) => {
-                // exactly the target load (cur.d + (target − cur.d) may differ in the last bit),
-                // so that a reversible cycle revisits the loading branch's loads
-                st.d = target;
-                model.enforce_constraints(&mut st);
-                equilibrate(model, &mut st, opts, None, None).map(|it| (st, it))
-            }
-        };
-        match attempt {
+        // exactly the target load, so that a reversible cycle revisits the loading branch's loads
+        match displacement_step(model, opts, &path.cur, target, None) {
             Ok((mut st, iters)) => {
                 model.commit_slip(&mut st);
-                let f = model
-                    .assemble(&st, false)
-                    .expect("converged state is not inverted");
-                let edge = edge::loaded_edge_node(model, &st, &f.grad, opts.multiplier_rtol);
-                let (mut point, grad) = measure(model, &st, estar, edge, opts.edge_rule);
+                let (mut point, grad) = measure_between_events(model, &st, estar, opts);
                 point.newton_iterations = iters;
                 on_step(&point);
                 cur_p = point.p_over_estar;

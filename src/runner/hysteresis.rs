@@ -11,7 +11,8 @@
 use super::fe_cases::{self, FeCase, FeOutcome, FePhysics};
 use super::scenes::{Scene, SceneContext, SceneResult};
 use super::RunOptions;
-use crate::fe::{cycle_work_over_estar_lambda2, CurvePoint, LoadDirection};
+use crate::accuracy::richardson;
+use crate::fe::{cycle_work_over_estar_lambda2, CurvePoint, Interface, LoadDirection};
 use crate::plot::{padded_range, palette, Figure, LegendPosition, Panel, Series};
 use crate::spec::{Bounded, FeSection, NonNegative, Positive, SpecError, Validator};
 use crate::table::{Cell, Table};
@@ -52,7 +53,7 @@ pub struct Confinement {
     pub tau_max_mpa: Bounded<NonNegative>,
     /// Layer thicknesses h/λ.
     pub thickness_over_lambda: Vec<Bounded<Positive>>,
-    /// Load to the first step whose p̄/E* reaches this; the FE section's
+    /// Load until p̄/E* is this (`fe::SolveOptions::until_p_over_estar`); the FE section's
     /// `until_a_over_lambda` caps a/λ on the way.
     pub until_p_over_estar: Bounded<Positive>,
 }
@@ -141,7 +142,7 @@ impl Scene for HysteresisScene {
 struct Dissipation {
     loading_work: f64,
     work: f64,
-    /// On the next coarser mesh, with the Richardson estimate of the fine value's error.
+    /// W on the next coarser mesh, and the Richardson extrapolation of the two.
     coarse: Option<(f64, f64)>,
 }
 
@@ -252,29 +253,30 @@ fn run(title: &str, s: &HysteresisScene, opts: &RunOptions) -> Result<SceneResul
             None => {
                 let w_load = loading_work(&o.points);
                 let w = cycle_work_over_estar_lambda2(&o.points, &o.unloading);
-                let reversible = c.tau_max_mpa == 0.0;
+                let reversible = c.problem.interface == Interface::Frictionless;
                 if reversible && w.abs() > CLOSURE_RTOL * w_load {
                     bail!("the frictionless loop {label} does not close: dissipated W/(E*λ²) = {w:.3e}, beyond {CLOSURE_RTOL:e} of the loading work {w_load:.4e}");
                 }
                 if w < -CLOSURE_RTOL * w_load {
                     bail!("the loop {label} creates energy: W/(E*λ²) = {w:.3e} < 0 beyond {CLOSURE_RTOL:e} of the loading work {w_load:.4e}");
                 }
+                // W on the next coarser mesh, and the Richardson extrapolation from the two
                 let coarse = order.and_then(|order| {
                     let (coarse_case, ratio) = fe_cases::coarser_cases(std::slice::from_ref(c))
                         .pop()
                         .flatten()?;
-                    let co = outcome_of(&coarse_case.with_unloading())?;
+                    let co = outcome_of(&coarse_case)?;
                     if co.failure.is_some() {
                         return None;
                     }
                     let wc = cycle_work_over_estar_lambda2(&co.points, &co.unloading);
-                    Some((wc, (w - wc) / (ratio.powf(order) - 1.0)))
+                    Some((wc, richardson(wc, w, ratio, order)))
                 });
                 row.extend([w_load.into(), w.into(), (w / w_load).into()]);
                 if order.is_some() {
                     match coarse {
-                        Some((wc, delta)) => {
-                            row.extend([wc.into(), (w + delta).into(), delta.abs().into()])
+                        Some((wc, limit)) => {
+                            row.extend([wc.into(), limit.into(), (limit - w).abs().into()])
                         }
                         None => row.extend([Cell::Empty, Cell::Empty, Cell::Empty]),
                     }
@@ -292,11 +294,11 @@ fn run(title: &str, s: &HysteresisScene, opts: &RunOptions) -> Result<SceneResul
     }
 
     let figure = figure(title, s, &results, order)?;
-    let notes = incomplete.clone();
+    // incomplete loops are reported by the run itself (`SceneResult::incomplete`)
     Ok(SceneResult {
         tables: vec![points, dissipation],
         figure,
-        notes,
+        notes: vec![],
         incomplete,
     })
 }
@@ -386,7 +388,7 @@ fn figure(
             .iter()
             .filter_map(|(_, _, d)| {
                 let d = d.as_ref()?;
-                Some(d.coarse?.1.abs() / d.loading_work)
+                Some((d.coarse?.1 - d.work).abs() / d.loading_work)
             })
             .fold(0.0_f64, f64::max);
         mesh_note = Some(format!(
