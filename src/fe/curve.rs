@@ -106,6 +106,10 @@ pub struct SolveWork {
     /// Numeric factorisations of the tangent, of any kind (a failed Cholesky counts, as
     /// does the `L D Lᵀ` that follows it).
     pub factorisations: usize,
+    /// Unit vectors of updated (friction) rows solved for by the Woodbury solve: zero when
+    /// the factor's trailing block gives `S⁻¹` on the contact face (`fe::linsys`), one per
+    /// friction row and tangent otherwise.
+    pub woodbury_unit_solves: usize,
 }
 
 /// The direction of the load on a branch of a loading–unloading cycle; named `loading` and

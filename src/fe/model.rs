@@ -126,6 +126,29 @@ pub struct Model {
     friction_rows: Vec<FrictionRow>,
 }
 
+/// The equations that the friction rows and the columns they touch can occupy: the contact
+/// face and the nodes of its elements (the layer above it), ordered last in the
+/// factorisation so that the Woodbury solve reads `S⁻¹` on them from the factor's trailing
+/// block (`linsys`). The face nodes' sliding slots, the rows that carry the updates, come
+/// last of all: the trailing block's forward solve starts at the first of them.
+fn friction_block(mesh: &Mesh) -> Vec<usize> {
+    let face: std::collections::BTreeSet<usize> = mesh.bottom.iter().copied().collect();
+    let near_face: std::collections::BTreeSet<usize> = mesh
+        .quads
+        .iter()
+        .filter(|q| q.iter().any(|n| face.contains(n)))
+        .flatten()
+        .copied()
+        .collect();
+    let mut dofs: Vec<usize> = near_face
+        .iter()
+        .flat_map(|&n| [2 * n, 2 * n + 1])
+        .filter(|&d| !(d % 2 == 0 && face.contains(&(d / 2))))
+        .collect();
+    dofs.extend(mesh.bottom.iter().map(|&n| 2 * n));
+    dofs
+}
+
 type SlotMap = Vec<[Option<[f64; 2]>; 2]>;
 
 impl Model {
@@ -208,7 +231,10 @@ impl Model {
                 d
             })
             .collect();
-        let sys = SparseSystem::new(2 * mesh.nodes.len(), &elem_dofs);
+        let mut sys = SparseSystem::new(2 * mesh.nodes.len(), &elem_dofs);
+        if friction.is_some() {
+            sys.order_last(&friction_block(&mesh));
+        }
         Self {
             mesh,
             mat,
@@ -860,6 +886,7 @@ impl Model {
         super::SolveWork {
             tangent_assemblies: self.tangent_assemblies,
             factorisations: self.sys.factorisations(),
+            woodbury_unit_solves: self.sys.woodbury_unit_solves(),
         }
     }
 
