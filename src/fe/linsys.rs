@@ -1298,6 +1298,22 @@ mod tests {
         assert_eq!(sys.get(9, 12), 0.0);
     }
 
+    /// The system of `sys` and right-hand side `b` under `change` (one right-hand side), dense.
+    fn changed_system(sys: &SparseSystem, b: &[f64], change: &RowChange) -> (Mat<f64>, Vec<f64>) {
+        let dense = Mat::from_fn(16, 16, |r, c| {
+            let extra: f64 = change
+                .entries
+                .iter()
+                .filter(|&&(col, _)| r == change.row && col == c)
+                .map(|&(_, v)| v)
+                .sum();
+            sys.get(r, c) + extra
+        });
+        let mut changed_b = b.to_vec();
+        changed_b[change.row] += change.rhs[0];
+        (dense, changed_b)
+    }
+
     /// The switching solve: a [`RowChange`] on an updated row (entries and right-hand
     /// side) gives the solution of the changed system (dense LU of it), without a new
     /// factorisation; `switch` sees the assembled solution first, then the changed one;
@@ -1313,17 +1329,7 @@ mod tests {
             rhs: vec![2.0],
         };
         let b: Vec<f64> = (0..16).map(|i| ((i * 3) % 7) as f64 - 3.0).collect();
-        let mut changed_b = b.clone();
-        changed_b[9] += 2.0;
-        let dense = Mat::from_fn(16, 16, |r, c| {
-            let extra: f64 = change
-                .entries
-                .iter()
-                .filter(|&&(col, _)| r == 9 && col == c)
-                .map(|&(_, v)| v)
-                .sum();
-            sys.get(r, c) + extra
-        });
+        let (dense, changed_b) = changed_system(&sys, &b, &change);
         let reference = dense
             .partial_piv_lu()
             .solve(Mat::from_fn(16, 1, |i, _| changed_b[i]));
@@ -1454,17 +1460,7 @@ mod tests {
             rhs: vec![2.0],
         };
         let b = strip_rhs(1).remove(0);
-        let mut changed_b = b.clone();
-        changed_b[12] += 2.0;
-        let dense = Mat::from_fn(16, 16, |r, c| {
-            let extra: f64 = change
-                .entries
-                .iter()
-                .filter(|&&(col, _)| r == 12 && col == c)
-                .map(|&(_, v)| v)
-                .sum();
-            sys.get(r, c) + extra
-        });
+        let (dense, changed_b) = changed_system(&sys, &b, &change);
         let factorisations = sys.factorisations();
         let mut seen = 0;
         let mut x = vec![b.clone()];
