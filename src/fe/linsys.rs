@@ -561,9 +561,13 @@ impl SparseSystem {
             _ => return None,
         };
         let symbolic = self.symbolic_llt.as_ref()?;
+        // the factor's positions are the ordered ones only if faer kept that order
         let SymbolicCholeskyRaw::Supernodal(supernodal) = symbolic.raw() else {
             return None;
         };
+        if symbolic.perm().is_some() {
+            return None;
+        }
         let c = self.trailing.len();
         let first = self.n - c;
         // the trailing block of the factor (LDLᵀ stores D on L's unit diagonal)
