@@ -373,8 +373,6 @@ fn solve_with_friction_prints_the_curve_and_rejects_bad_flags() {
     }
 }
 
-/// A reader that closes the pipe early (`wavy eval … | head -1`) ends every command quietly
-/// with exit 0: no panic, no error message.
 /// `wavy solve --unload`: the loading rows, then the unloading rows back to zero load, each
 /// with its branch in a last column; `--unload` with `--error-estimate` is refused.
 #[test]
@@ -427,6 +425,8 @@ fn solve_with_unload_prints_both_branches() {
     );
 }
 
+/// A reader that closes the pipe early (`wavy eval … | head -1`) ends every command quietly
+/// with exit 0: no panic, no error message.
 #[test]
 fn closed_stdout_pipe_ends_quietly_with_exit_0() {
     use std::process::Stdio;

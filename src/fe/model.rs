@@ -140,11 +140,14 @@ fn friction_block(mesh: &Mesh) -> Vec<usize> {
         .flatten()
         .copied()
         .collect();
-    let mut dofs: Vec<usize> = near_face
-        .iter()
-        .flat_map(|&n| [2 * n, 2 * n + 1])
-        .filter(|&d| !(d % 2 == 0 && face.contains(&(d / 2))))
-        .collect();
+    let mut dofs = Vec::new();
+    for &n in &near_face {
+        if !face.contains(&n) {
+            dofs.push(2 * n);
+        }
+        dofs.push(2 * n + 1);
+    }
+    // the face nodes' sliding slots (slot 2n) last of all
     dofs.extend(mesh.bottom.iter().map(|&n| 2 * n));
     dofs
 }
