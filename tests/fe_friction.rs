@@ -119,8 +119,8 @@ fn curve_with(ar: f64, tau_max_over_estar: f64, opts: &SolveOptions) -> Curve {
 /// every point of the curve with it matches the curve without it to 10⁻⁸ relative (the
 /// Newton tolerance is 10⁻¹⁰ of the nodal forces; measured over the 18 Fig. 3 curves on the
 /// default mesh: at most 7.7·10⁻⁹; this test prints its own), and it needs fewer Newton
-/// iterations and tangent assemblies (counted, deterministic; measured here: 403 against
-/// 685 iterations, 658 against 1006 assemblies).
+/// iterations and tangent assemblies (counted, deterministic; measured here: 379 against
+/// 649 iterations, 452 against 917 assemblies).
 #[test]
 fn semismooth_branch_choice_changes_the_path_not_the_curve() {
     let opts = |semismooth_friction| SolveOptions {

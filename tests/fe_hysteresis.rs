@@ -80,9 +80,9 @@ fn assert_closes(w: f64, w_load: f64, what: &str) {
 
 /// Frictionless: unloading revisits every load of the loading branch, exactly, and finds the
 /// same state there within a bound proportional to the Newton tolerance (100 × rtol × p̄_max;
-/// measured at AR 0.3 on the coarse mesh: 5.9e-8, 7.6e-11, 1.4e-11 at rtol 1e-6, 1e-8, 1e-10).
-/// The dissipated work is zero within 1e-6 of the loading work (measured 2.3e-9, 1.5e-11,
-/// 3.2e-12).
+/// measured at AR 0.3 on the coarse mesh: 6.7e-9, 6.7e-11, 1.4e-11 at rtol 1e-6, 1e-8, 1e-10).
+/// The dissipated work is zero within 1e-6 of the loading work (measured 1.3e-9, 1.3e-11,
+/// 3.3e-12).
 #[test]
 fn frictionless_loop_closes_within_a_bound_that_shrinks_with_the_tolerance() {
     let p = problem(0.3, 0.0);

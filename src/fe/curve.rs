@@ -88,6 +88,9 @@ pub struct DeformedState {
     pub quads: Vec<[usize; 4]>,
     /// Contact-face node ids in order of increasing reference `X`.
     pub bottom: Vec<usize>,
+    /// Whether each contact-face node is in contact (the active set; the edge node of the
+    /// last event touches with zero force, so its pressure is round-off of either sign).
+    pub in_contact: Vec<bool>,
     /// Normal contact pressure `p/E*` per contact-face node: the normal contact force
     /// over the node's tributary length on the deformed face (0 on free nodes).
     pub contact_pressure_over_estar: Vec<f64>,

@@ -11,7 +11,9 @@
 //! 1. supernodal Cholesky `L Lᵀ`;
 //! 2. when Cholesky fails (the reduced Hessian need not be positive definite away from
 //!    equilibrium), `L D Lᵀ` without pivoting, accepted if its solution's residual is
-//!    small;
+//!    small. Indefinite tangents come in runs (the Newton iterations of a step near the
+//!    contact edge), so after a failed Cholesky the next factorisations try `L D Lᵀ` first,
+//!    until one has a positive `D` (the matrix was positive definite): Cholesky first again;
 //! 3. else the symmetric-indefinite `L B Lᵀ` (Bunch–Kaufman pivoting inside the
 //!    supernodes);
 //! 4. LU with partial pivoting as the last resort.
@@ -383,6 +385,9 @@ pub struct SparseSystem {
     /// Which factorisation of the symmetric part the last successful solve left in
     /// `llt_values` (or in `numeric_lu`).
     factored: Factored,
+    /// The last symmetric part was indefinite: the next factorisation tries `L D Lᵀ` before
+    /// Cholesky (see the [module documentation](self)).
+    expect_indefinite: bool,
     /// The equations ordered last in the Cholesky factorisation ([`Self::order_last`]),
     /// in their order there.
     trailing: Vec<usize>,
@@ -461,6 +466,7 @@ impl SparseSystem {
             lblt_subdiag: Vec::new(),
             lblt_perm: (Vec::new(), Vec::new()),
             factored: Factored::None,
+            expect_indefinite: false,
             trailing: Vec::new(),
             trailing_slot: vec![usize::MAX; ndof],
         }
@@ -1038,9 +1044,7 @@ impl SparseSystem {
     /// Supernodal sparse Cholesky (sequential) of the lower triangle and solve for every
     /// right-hand side; `false` if the matrix is not numerically positive definite.
     fn llt_solve(&mut self, rhs: &mut [Vec<f64>]) -> Result<bool, LinSolveError> {
-        self.ensure_symbolic_cholesky()?;
         let symbolic = self.symbolic_llt.clone().expect("symbolic set");
-        self.ordered.gather(&self.values);
         let mat = self.ordered.matrix();
         let par = Par::Seq;
         let scratch = self
@@ -1088,10 +1092,42 @@ impl SparseSystem {
         checked: usize,
     ) -> Result<(), LinSolveError> {
         self.ensure_symbolic_cholesky()?;
-        if self.llt_solve(rhs)? || self.ldlt_solve(rhs, checked)? || self.lblt_solve(rhs)? {
+        self.ordered.gather(&self.values);
+        let solved = if self.expect_indefinite {
+            if self.ldlt_solve(rhs, checked)? {
+                self.expect_indefinite = !self.ldlt_positive();
+                true
+            } else {
+                self.lblt_solve(rhs)?
+            }
+        } else {
+            self.llt_solve(rhs)? || {
+                self.expect_indefinite = true;
+                self.ldlt_solve(rhs, checked)? || self.lblt_solve(rhs)?
+            }
+        };
+        if solved {
             return Ok(());
         }
         self.lu_solve_multi(rhs)
+    }
+
+    /// `true` when the `L D Lᵀ` factorisation held has a positive `D` (the matrix was
+    /// positive definite: Cholesky would have succeeded), or when that cannot be read (a
+    /// simplicial factorisation).
+    fn ldlt_positive(&self) -> bool {
+        let Some(symbolic) = self.symbolic_llt.as_ref() else {
+            return true;
+        };
+        let SymbolicCholeskyRaw::Supernodal(supernodal) = symbolic.raw() else {
+            return true;
+        };
+        // `L D Lᵀ` stores `D` on the unit diagonal of `L`
+        let factor = SupernodalLltRef::new(supernodal, &self.llt_values);
+        (0..supernodal.n_supernodes()).all(|s| {
+            let val = factor.supernode(s).val();
+            (0..val.ncols()).all(|j| val[(j, j)] > 0.0)
+        })
     }
 
     /// Sparse `L D Lᵀ` factorisation without pivoting (on the Cholesky symbolic
@@ -1101,11 +1137,14 @@ impl SparseSystem {
     /// (≈ 130) passes, and the curve's time in indefinite factorisations drops by a
     /// fifth against `L B Lᵀ`.
     fn ldlt_solve(&mut self, rhs: &mut [Vec<f64>], checked: usize) -> Result<bool, LinSolveError> {
-        let symbolic = self.symbolic_llt.clone().expect("Cholesky tried first");
-        // the values gathered by the Cholesky attempt
+        let symbolic = self.symbolic_llt.clone().expect("symbolic set");
+        // the values gathered by `solve_symmetric_checked`
         let mat = self.ordered.matrix();
         let par = Par::Seq;
-        let scratch = self.llt_scratch.as_mut().expect("Cholesky tried first");
+        let scratch = self
+            .llt_scratch
+            .as_mut()
+            .expect("scratch set with the symbolic");
         scratch.reserve(symbolic.solve_in_place_scratch::<f64>(rhs.len(), par));
         let buf = &mut scratch.buf;
         self.factorisations += 1;
@@ -1148,14 +1187,17 @@ impl SparseSystem {
     /// as LU at about the cost of a Cholesky factorisation (measured: one sparse LU of these
     /// matrices costs 5–10 Cholesky factorisations).
     fn lblt_solve(&mut self, rhs: &mut [Vec<f64>]) -> Result<bool, LinSolveError> {
-        let symbolic = self.symbolic_llt.clone().expect("Cholesky tried first");
-        // the values gathered by the Cholesky attempt
+        let symbolic = self.symbolic_llt.clone().expect("symbolic set");
+        // the values gathered by `solve_symmetric_checked`
         let mat = self.ordered.matrix();
         let par = Par::Seq;
         self.lblt_subdiag.resize(self.n, 0.0);
         self.lblt_perm.0.resize(self.n, 0);
         self.lblt_perm.1.resize(self.n, 0);
-        let scratch = self.llt_scratch.as_mut().expect("Cholesky tried first");
+        let scratch = self
+            .llt_scratch
+            .as_mut()
+            .expect("scratch set with the symbolic");
         scratch.reserve(symbolic.solve_in_place_scratch::<f64>(rhs.len(), par));
         let buf = &mut scratch.buf;
         self.factorisations += 1;
@@ -1493,5 +1535,33 @@ mod tests {
             .expect("solvable");
         assert_eq!(passes, 4);
         assert_eq!(x, assembled);
+    }
+
+    /// After a failed Cholesky the next factorisation is `L D Lᵀ` first (one factorisation
+    /// for an indefinite matrix instead of two), until an `L D Lᵀ` finds a positive `D`:
+    /// Cholesky first again. Every solution agrees with a dense LU.
+    #[test]
+    fn indefinite_runs_factor_by_ldlt_first() {
+        let mut sys = strip();
+        let diagonal = sys.diag_pos[1];
+        let b = strip_rhs(1);
+        // (indefinite?, factorisations of this solve, factorisation held after it)
+        let runs = [
+            (false, 1, Factored::Llt),
+            (true, 2, Factored::Ldlt),
+            (true, 1, Factored::Ldlt),
+            (false, 1, Factored::Ldlt),
+            (false, 1, Factored::Llt),
+        ];
+        for (step, (indefinite, count, held)) in runs.into_iter().enumerate() {
+            sys.values[diagonal] = if indefinite { -12.0 } else { 11.0 };
+            let dense = Mat::from_fn(16, 16, |r, c| sys.get(r, c));
+            let before = sys.factorisations();
+            let mut x = b.clone();
+            sys.solve_multi(&mut x).expect("solvable");
+            assert_eq!(sys.factorisations() - before, count, "solve {step}");
+            assert_eq!(sys.factored, held, "solve {step}");
+            assert_matches_dense(&dense, &x[0], &b[0]);
+        }
     }
 }

@@ -77,17 +77,21 @@ pub struct IsoKinematics {
 }
 
 /// `J^(−2/3)`. Nearly incompressible states have `|J − 1| ≪ 1`; there `y = J^(−1/3)`
-/// comes from three Newton steps `y ← y (4 − J y³)/3` on `y⁻³ = J`, started at the
-/// Taylor value `1 − (J − 1)/3` (error ≤ 3·10⁻⁴ for `|J − 1| ≤ 0.05`, squared by every
-/// step: below round-off after three), and `J^(−2/3) = y²`. Elsewhere through the cube
-/// root. Measured: the software `cbrt` took 10 % of a curve's time.
+/// comes from two Newton steps `y ← y (4 − J y³)/3` on `y⁻³ = J`, started at the
+/// second-order Taylor value `1 − e/3 + 2e²/9` (`e = J − 1`; relative error
+/// `≈ 14|e|³/81 ≤ 2.2·10⁻⁵` for `|e| ≤ 0.05`; a step maps an error `δ` to `≈ 2δ²`:
+/// `10⁻⁹`, then below round-off), and `J^(−2/3) = y²`. Elsewhere through the cube root.
+/// Measured: the software `cbrt` took 10 % of a curve's time; this chain of dependent
+/// operations, with three steps from the first-order value and a division by 3 in each,
+/// 8 % (perf, AR 0.3, τ_max 0.2 MPa).
 #[inline]
 fn j_minus_two_thirds(j: f64) -> f64 {
+    const THIRD: f64 = 1.0 / 3.0;
     let e = j - 1.0;
     if e.abs() <= 0.05 {
-        let mut y = 1.0 - e / 3.0;
-        for _ in 0..3 {
-            y *= (4.0 - j * y * y * y) / 3.0;
+        let mut y = 1.0 + e * (-THIRD + e * (2.0 / 9.0));
+        for _ in 0..2 {
+            y *= (4.0 - j * y * y * y) * THIRD;
         }
         y * y
     } else {
@@ -162,5 +166,27 @@ impl NeoHooke {
             }
         }
         Some(IsoResponse { w, p, a: t })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `J^(−2/3)` by Newton steps near `J = 1` and by the cube root elsewhere agrees with
+    /// `powf` to round-off (a few units in the last place) on both sides of the switch at
+    /// `|J − 1| = 0.05`.
+    #[test]
+    fn j_minus_two_thirds_is_exact_to_round_off() {
+        let mut largest = 0.0_f64;
+        for i in 0..=20_000 {
+            let j = 0.9 + 0.2 * f64::from(i) / 20_000.0;
+            let exact = j.powf(-2.0 / 3.0);
+            largest = largest.max((j_minus_two_thirds(j) / exact - 1.0).abs());
+        }
+        assert!(
+            largest <= 4.0 * f64::EPSILON,
+            "largest relative error {largest:e}"
+        );
     }
 }

@@ -24,7 +24,8 @@
 use super::contact::Indenter;
 use super::element::{self, QuadRef};
 use super::friction::{
-    Branch, FrictionEval, FrictionLaw, FrictionRow, Interface, LawBranch, RegimeRow, SlipHistory,
+    Branch, BranchChoice, FrictionEval, FrictionLaw, FrictionRow, Interface, LawBranch, RegimeRow,
+    SlipHistory,
 };
 use super::linsys::{LinSolveError, RowChange, SparseSystem};
 use super::material::NeoHooke;
@@ -603,12 +604,15 @@ impl Model {
     /// return-mapping branch) is the one its linearised state after the step lies on, not
     /// the one of the current state. A sliding node whose trial slip after the step,
     /// `e* + w δx`, leaves its slip branch (lands in the stick band or beyond it, on the
-    /// other side) is put on the stick branch ([`Branch::after_step`]); a node whose
-    /// linearised thresholds cross takes the smaller one, Coulomb or Orowan
+    /// other side) is put on the stick branch, and back on its slip branch for good if its
+    /// stick step lands there ([`BranchChoice::after_step`]); a node whose linearised
+    /// thresholds cross takes the smaller one, Coulomb or Orowan
     /// ([`FrictionRow::regime_after`]). The rows and residuals of the new pieces replace the
-    /// assembled ones ([`FrictionRow::switched`], exact: unit test) and the system is solved
-    /// again by Woodbury with the same factorisation, until the pieces agree with the step;
-    /// if they have not within [`MAX_BRANCH_SWITCHES`], the assembled step is taken.
+    /// assembled ones ([`FrictionRow::switched`], exact inside the band: unit test; beyond
+    /// it the threshold's sensitivity keeps the band's factor, [`FrictionRow::law_row`]) and
+    /// the system is solved again by Woodbury with the same factorisation, until the pieces
+    /// agree with the step; if they have not within [`MAX_BRANCH_SWITCHES`], the assembled
+    /// step is taken.
     ///
     /// Why: the slip tangent is flat, so a node whose solution lies in the narrow stick band
     /// is thrown from slip one way to slip the other and back (Newton's cycle on a
@@ -617,8 +621,9 @@ impl Model {
     /// switches change the path to each equilibrium, not the equilibrium (every p̄/E* of the
     /// 18 Fig. 3 curves within 8·10⁻⁹ of the plain step's; test
     /// `semismooth_branch_choice_changes_the_path_not_the_curve` in `tests/fe_friction.rs`).
-    /// Measured: 8128 tangent assemblies over the 18 Fig. 3 curves against 12182 without the
-    /// switches (README, "Frictional speed"). Tried and left out: letting stick nodes slide when
+    /// Measured (`cargo run --release --example fig3_work`): 6863 tangent assemblies over the
+    /// 18 Fig. 3 curves against 11847 without the switches (README, "Frictional speed").
+    /// Tried and left out: letting stick nodes slide when
     /// their step leaves the band, or any node take whatever branch its step lands on (the
     /// switches cycled or cost more iterations), switching into and out of the open regime
     /// ([`FrictionRow::regime_after`]), and the switch in the predictor's load tangent (no
@@ -636,6 +641,10 @@ impl Model {
         let rows = &self.friction_rows;
         let with_load_column = rhs.len() > 1;
         let mut assumed: Vec<LawBranch> = rows.iter().map(|r| r.at).collect();
+        let mut choices: Vec<BranchChoice> = rows
+            .iter()
+            .map(|r| BranchChoice::assembled(r.at.slip))
+            .collect();
         let switching = self
             .sys
             .solve_multi_switching(rhs, MAX_BRANCH_SWITCHES, |solutions| {
@@ -643,9 +652,10 @@ impl Model {
                 let mut landed = assumed.clone();
                 for (i, r) in rows.iter().enumerate() {
                     let slip = Branch::of(r.trial_slip + r.w * step[r.row], law.slip_c);
+                    choices[i] = choices[i].after_step(r.at.slip, slip);
                     landed[i] = LawBranch {
                         regime: r.regime_after(&step),
-                        slip: assumed[i].slip.after_step(slip),
+                        slip: choices[i].assumed,
                     };
                 }
                 if landed == assumed {

@@ -403,6 +403,7 @@ fn deformed_state(model: &Model, st: &State, grad: &[f64], estar: f64) -> Deform
         nodes: st.x.clone(),
         quads: model.mesh.quads.clone(),
         bottom: b.clone(),
+        in_contact: st.active.clone(),
         contact_pressure_over_estar: (0..n).map(|k| normal[k] / trib(k) / estar).collect(),
         contact_shear_over_estar: (0..n).map(|k| tangential[k] / trib(k) / estar).collect(),
     }

@@ -99,8 +99,8 @@ fn run(title: &str, s: &DeformedMeshScene, opts: &RunOptions) -> Result<SceneRes
     let in_contact: Vec<(f64, f64)> = state
         .bottom
         .iter()
-        .zip(&state.contact_pressure_over_estar)
-        .filter(|(_, p)| **p > 0.0)
+        .zip(&state.in_contact)
+        .filter(|(_, &touching)| touching)
         .map(|(&i, _)| (state.nodes[i][0], state.nodes[i][1]))
         .collect();
     mesh_series.push(Series::markers(
