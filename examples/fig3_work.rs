@@ -9,7 +9,10 @@
 //! (`SolveOptions::semismooth_friction`); `--points FILE` writes every point
 //! (`AR τ a/λ p̄/E*`, 13 significant digits) to compare two builds' curves.
 use rayon::prelude::*;
-use wavy::fe::{solve_curve, Interface, Kinematics, LayerProblem, SolveOptions};
+use wavy::fe::{solve_curve, SolveOptions};
+#[path = "../benches/common/mod.rs"]
+mod common;
+use common::finite_layer_problem;
 
 const ASPECT_RATIOS: [f64; 3] = [0.1, 0.18, 0.3];
 const TAU_MAX_OVER_ESTAR: [f64; 6] = [0.0, 0.01, 0.05, 0.1, 0.15, 0.2];
@@ -36,16 +39,7 @@ fn main() {
     let curves: Vec<_> = cases
         .par_iter()
         .map(|&(ar, tau)| {
-            let problem = LayerProblem {
-                kinematics: Kinematics::Finite,
-                interface: Interface::coulomb_orowan(
-                    wavy::defaults::friction_coefficient(),
-                    tau,
-                    wavy::defaults::elastic_slip_over_element(),
-                ),
-                ..wavy::defaults::layer_problem(ar)
-            };
-            solve_curve(&problem, &opts, &mut |_| {})
+            solve_curve(&finite_layer_problem(ar, tau), &opts, &mut |_| {})
                 .unwrap_or_else(|f| panic!("AR {ar}, τ_max/E* {tau}: {}", f.error))
         })
         .collect();
