@@ -1,21 +1,20 @@
-//! The Newton work of the 18 Fig. 3 curves (AR ∈ {0.1, 0.18, 0.3} × τ_max ∈ {0, 0.01,
-//! 0.05, 0.1, 0.15, 0.2} MPa, E* = 1 MPa, default mesh, to a/λ = 0.45, the figure's
-//! physics): per curve the tangent assemblies and factorisations of every attempt, and
-//! their totals, the counts the README's "Frictional speed" section compares solver
-//! changes by (deterministic, unlike wall times on a noisy machine).
+//! The Newton work of the Fig. 3 curves: the finite-element cases of
+//! `experiments/fig3_fe_vs_model.toml` (3 aspect ratios × 6 shear strengths, the spec's
+//! physics and mesh, built by the runner as for the figure), per curve the tangent
+//! assemblies and factorisations of every attempt, and their totals: the counts the README's
+//! "Frictional speed" section compares solver changes by (deterministic, unlike wall times
+//! on a noisy machine).
 //!
 //! Run: `cargo run --release --example fig3_work [-- --no-branch-switch] [-- --points FILE]`.
 //! `--no-branch-switch` turns the semismooth choice of the friction branches off
 //! (`SolveOptions::semismooth_friction`); `--points FILE` writes every point
 //! (`AR τ a/λ p̄/E*`, 13 significant digits) to compare two builds' curves.
 use rayon::prelude::*;
+use std::path::Path;
 use wavy::fe::{solve_curve, SolveOptions};
-#[path = "../benches/common/mod.rs"]
-mod common;
-use common::finite_layer_problem;
+use wavy::runner::{load_spec, RunOptions};
 
-const ASPECT_RATIOS: [f64; 3] = [0.1, 0.18, 0.3];
-const TAU_MAX_OVER_ESTAR: [f64; 6] = [0.0, 0.01, 0.05, 0.1, 0.15, 0.2];
+const SPEC: &str = "experiments/fig3_fe_vs_model.toml";
 
 fn main() {
     let mut semismooth_friction = true;
@@ -28,26 +27,27 @@ fn main() {
             other => panic!("unknown flag {other} (--no-branch-switch, --points FILE)"),
         }
     }
-    let cases: Vec<(f64, f64)> = ASPECT_RATIOS
-        .iter()
-        .flat_map(|&ar| TAU_MAX_OVER_ESTAR.iter().map(move |&tau| (ar, tau)))
-        .collect();
-    let opts = SolveOptions {
-        semismooth_friction,
-        ..Default::default()
-    };
+    let spec = load_spec(Path::new(SPEC)).unwrap_or_else(|e| panic!("{SPEC}: {e:#}"));
+    let cases = spec.scene().fe_cases(&RunOptions::default());
     let curves: Vec<_> = cases
         .par_iter()
-        .map(|&(ar, tau)| {
-            solve_curve(&finite_layer_problem(ar, tau), &opts, &mut |_| {})
-                .unwrap_or_else(|f| panic!("AR {ar}, τ_max/E* {tau}: {}", f.error))
+        .map(|case| {
+            let opts = SolveOptions {
+                semismooth_friction,
+                ..case.options
+            };
+            solve_curve(&case.problem, &opts, &mut |_| {}).unwrap_or_else(|f| {
+                let ar = case.problem.aspect_ratio;
+                panic!("AR {ar}, τ_max {} MPa: {}", case.tau_max_mpa, f.error)
+            })
         })
         .collect();
     println!("| AR | τ_max (MPa) | tangent assemblies | factorisations |");
     println!("|---|---|---|---|");
     let (mut assemblies, mut factorisations) = (0, 0);
     let mut points = String::new();
-    for (&(ar, tau), c) in cases.iter().zip(&curves) {
+    for (case, c) in cases.iter().zip(&curves) {
+        let (ar, tau) = (case.problem.aspect_ratio, case.tau_max_mpa);
         println!(
             "| {ar} | {tau} | {} | {} |",
             c.work.tangent_assemblies, c.work.factorisations
@@ -61,7 +61,10 @@ fn main() {
             );
         }
     }
-    println!("| all 18 | | {assemblies} | {factorisations} |");
+    println!(
+        "| all {} | | {assemblies} | {factorisations} |",
+        cases.len()
+    );
     if let Some(path) = points_file {
         std::fs::write(&path, points).unwrap_or_else(|e| panic!("{path}: {e}"));
     }

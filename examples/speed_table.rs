@@ -19,14 +19,28 @@ use std::path::PathBuf;
 use std::time::Instant;
 #[path = "../benches/common/mod.rs"]
 mod common;
-use common::{finite_layer_problem as problem, peak_memory_kb};
-use wavy::fe::{solve_curve, Curve, MeshLevel, SolveOptions};
+use common::peak_memory_kb;
+use wavy::fe::{solve_curve, Curve, Interface, Kinematics, LayerProblem, MeshLevel, SolveOptions};
 use wavy::runner::tier_timings::median;
 
 const CHILD: &str = "WAVY_SPEED_TABLE_CHILD";
 
 /// Set (to any value) for `--no-branch-switch`, inherited by the child processes.
 const NO_BRANCH_SWITCH: &str = "WAVY_SPEED_TABLE_NO_BRANCH_SWITCH";
+
+/// The layer problem at aspect ratio `ar`, frictional when `τ_max/E*` > 0 (the project's
+/// other defaults).
+fn problem(ar: f64, tau_max_over_estar: f64) -> LayerProblem {
+    LayerProblem {
+        kinematics: Kinematics::Finite,
+        interface: Interface::coulomb_orowan(
+            wavy::defaults::friction_coefficient(),
+            tau_max_over_estar,
+            wavy::defaults::elastic_slip_over_element(),
+        ),
+        ..wavy::defaults::layer_problem(ar)
+    }
+}
 
 fn options(mesh: MeshLevel) -> SolveOptions {
     SolveOptions {

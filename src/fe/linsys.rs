@@ -206,24 +206,6 @@ impl OrderedLower {
         lower
     }
 
-    /// The pattern of the upper triangle (the transpose of the lower one).
-    fn upper_pattern(&self) -> (Vec<usize>, Vec<usize>) {
-        let n = self.order.len();
-        let mut rows: Vec<Vec<usize>> = vec![Vec::new(); n];
-        for j in 0..n {
-            for &i in &self.row_idx[self.col_ptr[j]..self.col_ptr[j + 1]] {
-                rows[i].push(j);
-            }
-        }
-        let mut col_ptr = vec![0];
-        let mut row_idx = Vec::new();
-        for r in rows {
-            row_idx.extend(r);
-            col_ptr.push(row_idx.len());
-        }
-        (col_ptr, row_idx)
-    }
-
     /// Copy the matrix's `values` in.
     fn gather(&mut self, values: &[f64]) {
         for (v, &k) in self.values.iter_mut().zip(&self.source) {
@@ -381,7 +363,7 @@ pub struct SparseSystem {
     ordered: OrderedLower,
     llt_values: Vec<f64>,
     lblt_subdiag: Vec<f64>,
-    lblt_perm: (Vec<usize>, Vec<usize>),
+    lblt_perm: Permutation,
     /// Which factorisation of the symmetric part the last successful solve left in
     /// `llt_values` (or in `numeric_lu`).
     factored: Factored,
@@ -1021,9 +1003,13 @@ impl SparseSystem {
         self.ordered = OrderedLower::new(&self.col_ptr, &self.row_idx, order, &position);
         // the symbolic analysis of an unpermuted matrix reads its upper triangle whatever
         // the side named (faer 0.24), so it is given the transpose of the ordered lower one
-        let (upper_col_ptr, upper_row_idx) = self.ordered.upper_pattern();
+        let ordered = &self.ordered;
+        let upper = pattern(self.n, &ordered.col_ptr, &ordered.row_idx)
+            .transpose()
+            .to_col_major()
+            .map_err(|e| LinSolveError::Symbolic(format!("{e:?}")))?;
         let s = factorize_symbolic_cholesky(
-            pattern(self.n, &upper_col_ptr, &upper_row_idx),
+            upper.as_ref(),
             Side::Upper,
             SymmetricOrdering::Identity,
             params,
@@ -1045,33 +1031,35 @@ impl SparseSystem {
     /// right-hand side; `false` if the matrix is not numerically positive definite.
     fn llt_solve(&mut self, rhs: &mut [Vec<f64>]) -> Result<bool, LinSolveError> {
         let symbolic = self.symbolic_llt.clone().expect("symbolic set");
-        let mat = self.ordered.matrix();
-        let par = Par::Seq;
-        let scratch = self
+        let buf = &mut self
             .llt_scratch
             .as_mut()
-            .expect("scratch set with the symbolic");
-        scratch.reserve(symbolic.solve_in_place_scratch::<f64>(rhs.len(), par));
-        let buf = &mut scratch.buf;
+            .expect("set with the symbolic")
+            .buf;
         self.factorisations += 1;
         self.factored = Factored::None;
-        let llt = match symbolic.factorize_numeric_llt(
+        let factored = symbolic.factorize_numeric_llt(
             &mut self.llt_values,
-            mat,
+            self.ordered.matrix(),
             Side::Lower,
             Default::default(),
-            par,
+            Par::Seq,
             MemStack::new(buf),
             Default::default(),
-        ) {
-            Ok(l) => l,
-            Err(_) => return Ok(false),
-        };
-        let finite = solve_all_finite(rhs, &self.ordered.order, |x| {
-            llt.solve_in_place_with_conj(Conj::No, x, par, MemStack::new(buf))
-        });
-        if finite {
-            self.factored = Factored::Llt;
+        );
+        if factored.is_err() {
+            return Ok(false);
+        }
+        self.solve_with(Factored::Llt, rhs)
+    }
+
+    /// Solve with the numeric factorisation `kind` just computed into `llt_values`
+    /// ([`Self::resolve`]); it is held from then on if every solution is finite.
+    fn solve_with(&mut self, kind: Factored, rhs: &mut [Vec<f64>]) -> Result<bool, LinSolveError> {
+        self.factored = kind;
+        let finite = self.resolve(rhs)?;
+        if !finite {
+            self.factored = Factored::None;
         }
         Ok(finite)
     }
@@ -1138,33 +1126,28 @@ impl SparseSystem {
     /// fifth against `L B Lᵀ`.
     fn ldlt_solve(&mut self, rhs: &mut [Vec<f64>], checked: usize) -> Result<bool, LinSolveError> {
         let symbolic = self.symbolic_llt.clone().expect("symbolic set");
-        // the values gathered by `solve_symmetric_checked`
-        let mat = self.ordered.matrix();
-        let par = Par::Seq;
-        let scratch = self
+        let buf = &mut self
             .llt_scratch
             .as_mut()
-            .expect("scratch set with the symbolic");
-        scratch.reserve(symbolic.solve_in_place_scratch::<f64>(rhs.len(), par));
-        let buf = &mut scratch.buf;
+            .expect("set with the symbolic")
+            .buf;
         self.factorisations += 1;
         self.factored = Factored::None;
-        let ldlt = match symbolic.factorize_numeric_ldlt(
+        // the values gathered by `solve_symmetric_checked`
+        let factored = symbolic.factorize_numeric_ldlt(
             &mut self.llt_values,
-            mat,
+            self.ordered.matrix(),
             Side::Lower,
             Default::default(),
-            par,
+            Par::Seq,
             MemStack::new(buf),
             Default::default(),
-        ) {
-            Ok(l) => l,
-            Err(_) => return Ok(false),
-        };
+        );
+        if factored.is_err() {
+            return Ok(false);
+        }
         let b = rhs.to_vec();
-        if !solve_all_finite(rhs, &self.ordered.order, |x| {
-            ldlt.solve_in_place_with_conj(Conj::No, x, par, MemStack::new(buf))
-        }) {
+        if !self.solve_with(Factored::Ldlt, rhs)? {
             return Ok(false);
         }
         let accurate = rhs
@@ -1172,9 +1155,8 @@ impl SparseSystem {
             .zip(&b)
             .take(checked)
             .all(|(x, b)| residual_within(&self.mul(x), b, RESIDUAL_RTOL_SQUARED));
-        if accurate {
-            self.factored = Factored::Ldlt;
-        } else {
+        if !accurate {
+            self.factored = Factored::None;
             rhs.clone_from_slice(&b);
         }
         Ok(accurate)
@@ -1188,38 +1170,29 @@ impl SparseSystem {
     /// matrices costs 5–10 Cholesky factorisations).
     fn lblt_solve(&mut self, rhs: &mut [Vec<f64>]) -> Result<bool, LinSolveError> {
         let symbolic = self.symbolic_llt.clone().expect("symbolic set");
-        // the values gathered by `solve_symmetric_checked`
-        let mat = self.ordered.matrix();
-        let par = Par::Seq;
         self.lblt_subdiag.resize(self.n, 0.0);
         self.lblt_perm.0.resize(self.n, 0);
         self.lblt_perm.1.resize(self.n, 0);
-        let scratch = self
+        let buf = &mut self
             .llt_scratch
             .as_mut()
-            .expect("scratch set with the symbolic");
-        scratch.reserve(symbolic.solve_in_place_scratch::<f64>(rhs.len(), par));
-        let buf = &mut scratch.buf;
+            .expect("set with the symbolic")
+            .buf;
         self.factorisations += 1;
         self.factored = Factored::None;
-        let lblt = symbolic.factorize_numeric_intranode_lblt(
+        // the values gathered by `solve_symmetric_checked`
+        symbolic.factorize_numeric_intranode_lblt(
             &mut self.llt_values,
             &mut self.lblt_subdiag,
             &mut self.lblt_perm.0,
             &mut self.lblt_perm.1,
-            mat,
+            self.ordered.matrix(),
             Side::Lower,
-            par,
+            Par::Seq,
             MemStack::new(buf),
             Default::default(),
         );
-        let finite = solve_all_finite(rhs, &self.ordered.order, |x| {
-            lblt.solve_in_place_with_conj(Conj::No, x, par, MemStack::new(buf))
-        });
-        if finite {
-            self.factored = Factored::Lblt;
-        }
-        Ok(finite)
+        self.solve_with(Factored::Lblt, rhs)
     }
 
     /// Sparse LU with partial pivoting (COLAMD ordering, computed once) for any square
@@ -1318,25 +1291,11 @@ mod tests {
         assert_eq!(sys.updates.len(), 2);
         let dense = Mat::from_fn(16, 16, |r, c| sys.get(r, c));
         assert_eq!(dense[(9, 12)] - strip().get(9, 12), 4.5);
-        let b: Vec<Vec<f64>> = (0..2)
-            .map(|j| {
-                (0..16)
-                    .map(|i| ((i * 3 + j * 5) % 7) as f64 - 3.0)
-                    .collect()
-            })
-            .collect();
+        let b = strip_rhs(2);
         let mut x = b.clone();
         sys.solve_multi(&mut x).expect("solvable");
-        let lu = dense.partial_piv_lu();
         for (xj, bj) in x.iter().zip(&b) {
-            let reference = lu.solve(Mat::from_fn(16, 1, |i, _| bj[i]));
-            for (i, v) in xj.iter().enumerate() {
-                assert!(
-                    (v - reference[(i, 0)]).abs() <= 1e-12 * (1.0 + reference[(i, 0)].abs()),
-                    "x[{i}] = {v} vs dense {}",
-                    reference[(i, 0)]
-                );
-            }
+            assert_matches_dense(&dense, xj, bj);
         }
         // clearing drops the updates: the matrix is symmetric again
         sys.clear();
@@ -1360,6 +1319,33 @@ mod tests {
         (dense, changed_b)
     }
 
+    /// Solve `sys` for the strip's right-hand side, with a `switch` that asks for `change`
+    /// once (`inspect` sees every solution shown to it): one factorisation, one changed solve,
+    /// two calls of `switch`, and the changed system's solution (dense LU). Returns the
+    /// right-hand side.
+    fn assert_switches_once(
+        sys: &mut SparseSystem,
+        change: &RowChange,
+        inspect: impl Fn(&[Vec<f64>]),
+    ) -> Vec<f64> {
+        let b = strip_rhs(1).remove(0);
+        let (dense, changed_b) = changed_system(sys, &b, change);
+        let factorisations = sys.factorisations();
+        let mut seen = 0;
+        let mut x = vec![b.clone()];
+        let passes = sys
+            .solve_multi_switching(&mut x, 4, |shown| {
+                seen += 1;
+                inspect(shown);
+                (seen == 1).then(|| vec![change.clone()])
+            })
+            .expect("solvable");
+        assert_eq!((passes, seen), (1, 2));
+        assert_eq!(sys.factorisations(), factorisations + 1);
+        assert_matches_dense(&dense, &x[0], &changed_b);
+        b
+    }
+
     /// The switching solve: a [`RowChange`] on an updated row (entries and right-hand
     /// side) gives the solution of the changed system (dense LU of it), without a new
     /// factorisation; `switch` sees the assembled solution first, then the changed one;
@@ -1374,29 +1360,7 @@ mod tests {
             entries: vec![(9, 25.0), (1, -3.0)],
             rhs: vec![2.0],
         };
-        let b: Vec<f64> = (0..16).map(|i| ((i * 3) % 7) as f64 - 3.0).collect();
-        let (dense, changed_b) = changed_system(&sys, &b, &change);
-        let reference = dense
-            .partial_piv_lu()
-            .solve(Mat::from_fn(16, 1, |i, _| changed_b[i]));
-        let factorisations = sys.factorisations();
-        let mut seen = 0;
-        let mut x = vec![b.clone()];
-        let passes = sys
-            .solve_multi_switching(&mut x, 4, |_| {
-                seen += 1;
-                (seen == 1).then(|| vec![change.clone()])
-            })
-            .expect("solvable");
-        assert_eq!((passes, seen), (1, 2));
-        assert_eq!(sys.factorisations(), factorisations + 1);
-        for (i, v) in x[0].iter().enumerate() {
-            assert!(
-                (v - reference[(i, 0)]).abs() <= 1e-12 * (1.0 + reference[(i, 0)].abs()),
-                "x[{i}] = {v} vs dense {}",
-                reference[(i, 0)]
-            );
-        }
+        let b = assert_switches_once(&mut sys, &change, |_| {});
         // a switch that never settles: the assembled solution
         let mut assembled = vec![b.clone()];
         sys.solve_multi(&mut assembled).expect("solvable");
@@ -1505,23 +1469,11 @@ mod tests {
             entries: vec![(12, 25.0), (8, -3.0)],
             rhs: vec![2.0],
         };
-        let b = strip_rhs(1).remove(0);
-        let (dense, changed_b) = changed_system(&sys, &b, &change);
-        let factorisations = sys.factorisations();
-        let mut seen = 0;
-        let mut x = vec![b.clone()];
-        let passes = sys
-            .solve_multi_switching(&mut x, 4, |shown| {
-                seen += 1;
-                assert!(shown[0][..6].iter().all(|v| v.is_nan()));
-                assert!(shown[0][6..].iter().all(|v| v.is_finite()));
-                (seen == 1).then(|| vec![change.clone()])
-            })
-            .expect("solvable");
-        assert_eq!((passes, seen), (1, 2));
-        assert_eq!(sys.factorisations(), factorisations + 1);
+        let b = assert_switches_once(&mut sys, &change, |shown| {
+            assert!(shown[0][..6].iter().all(|v| v.is_nan()));
+            assert!(shown[0][6..].iter().all(|v| v.is_finite()));
+        });
         assert_eq!(sys.woodbury_unit_solves(), 0);
-        assert_matches_dense(&dense, &x[0], &changed_b);
         // a change that touches equation 1 (not ordered last): the assembled solution
         let mut assembled = vec![b.clone()];
         sys.solve_multi(&mut assembled).expect("solvable");
