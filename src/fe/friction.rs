@@ -51,7 +51,7 @@
 //! smooth (stick or slip either way; open, Coulomb or Orowan threshold): each node's row is
 //! kept under either regime (`FrictionRow`), so that the Newton step can put a node on
 //! another piece of the law without reassembling, a semismooth Newton step
-//! (`Model::solve_newton`). With [`Interface::Frictionless`] none of this
+//! ([`super::friction_step`]). With [`Interface::Frictionless`] none of this
 //! is built. For linear kinematics the same law
 //! acts on `u_x` at the reference position (`y_s' = 0`, `S = x`).
 
@@ -303,53 +303,6 @@ impl Branch {
     }
 }
 
-/// One node's return-mapping branch in the semismooth choice of a Newton step
-/// ([`super::model::Model::solve_newton`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) struct BranchChoice {
-    /// The branch assumed for the step.
-    pub assumed: Branch,
-    /// The node went back to its assembled slip branch: the choice is final.
-    settled: bool,
-}
-
-impl BranchChoice {
-    /// The start of the choice: the branch of the assembled state.
-    pub(super) fn assembled(at: Branch) -> Self {
-        Self {
-            assumed: at,
-            settled: false,
-        }
-    }
-
-    /// The choice after a step that lands the node on `landed`, its assembled state being
-    /// on `at`:
-    /// - a sliding node whose step leaves its slip branch (for the stick band or the other
-    ///   way) is put on the stick branch;
-    /// - a node so put on the stick branch whose stick step lands back on the slip branch it
-    ///   came from returns to that branch for good: neither branch's step is consistent
-    ///   (the linearised node sits at the band's edge), and the assembled one is kept;
-    /// - a stick node stays stuck (letting it slide when its step leaves the band made the
-    ///   choice cycle or cost more iterations).
-    ///
-    /// Each node thus switches at most twice, so the choice ends. Measured, against keeping
-    /// the stick branch in the second case: 6843 against 7026 tangent assemblies over the
-    /// 18 Fig. 3 curves.
-    pub(super) fn after_step(self, at: Branch, landed: Branch) -> Self {
-        if self.settled || landed == self.assumed || at == Branch::Stick {
-            return self;
-        }
-        match self.assumed {
-            Branch::Stick if landed == at => Self {
-                assumed: at,
-                settled: true,
-            },
-            Branch::Stick => self,
-            _ => Self::assembled(Branch::Stick),
-        }
-    }
-}
-
 /// The friction part of one active node's tangent row under one regime, per unit `φ` and
 /// `dφ/dx`: `∂(w L φ)/∂q = φ · per_phi + dφ/dx · w_limit e_x`, `∂(w L φ)/∂d = φ · per_phi_dd`
 /// (formulas at the [module documentation](self)). `w_limit = w L` is the regime's
@@ -398,7 +351,7 @@ pub(super) struct LawBranch {
 
 /// The friction row of one active node's tangent under either regime and any branch of the
 /// return mapping, at the assembled state: what the semismooth Newton step needs to put
-/// the node on another piece of the law without reassembling ([`super::model::Model::solve_newton`]).
+/// the node on another piece of the law without reassembling ([`super::friction_step`]).
 /// The residual is `r_x = c·g + w L φ`.
 #[derive(Clone, Debug)]
 pub(super) struct FrictionRow {
@@ -639,28 +592,5 @@ mod tests {
         }
         assert!((d_resid - 0.05 * 59.0).abs() <= 1e-12);
         assert!(d_resid_dd.abs() <= 1e-15);
-    }
-
-    /// The semismooth branch choice: a sliding node whose step leaves its slip branch goes
-    /// on stick; back to its slip branch for good if its stick step lands there again; a
-    /// stick node stays stuck; the choice ends.
-    #[test]
-    fn branch_choice_switches_a_node_at_most_twice() {
-        use Branch::{SlipBackward, SlipForward, Stick};
-        let sliding = BranchChoice::assembled(SlipForward);
-        assert_eq!(sliding.after_step(SlipForward, SlipForward), sliding);
-        let stuck = sliding.after_step(SlipForward, Stick);
-        assert_eq!(stuck.assumed, Stick);
-        assert_eq!(sliding.after_step(SlipForward, SlipBackward).assumed, Stick);
-        assert_eq!(stuck.after_step(SlipForward, SlipBackward), stuck);
-        let back = stuck.after_step(SlipForward, SlipForward);
-        assert_eq!(back.assumed, SlipForward);
-        for landed in [Stick, SlipBackward, SlipForward] {
-            assert_eq!(back.after_step(SlipForward, landed), back);
-        }
-        let sticking = BranchChoice::assembled(Stick);
-        for landed in [SlipBackward, SlipForward] {
-            assert_eq!(sticking.after_step(Stick, landed), sticking);
-        }
     }
 }

@@ -10,29 +10,39 @@
 //! `E* = E/(1 − ν²)`. The contact half-width `a` is the current `x` of the contact
 //! edge.
 //!
-//! # Method
+//! # Method, in the order a solve reads
 //! * [`mesh`]: structured Q1 mesh graded toward the contact face and the peak;
 //! * [`material`], [`element`]: compressible neo-Hookean, mean-dilatation Q1/P0 energy
 //!   (locking-free for `κ/G` from 10 to 10⁴);
 //! * [`contact`]: the indenter and exact normal contact by nonlinear elimination on the
-//!   analytic surface in the current configuration, active-set updates;
-//! * [`friction`]: the Coulomb–Orowan law, its return mapping and tangent rows (under
-//!   either regime, for the semismooth Newton step of `Model::solve_newton`);
-//! * [`model`]: boundary conditions and assembly of the reduced residual/tangent;
-//! * [`solver`]: Newton with line search, the active-set loop, displacement-controlled
-//!   stepping from one contact-edge event to the next, and the unloading branch of a
-//!   loading–unloading cycle ([`solve_cycle`]);
-//! * [`edge`]: the edge events (the load at which the next contact-face node touches,
-//!   bordered Newton solve with `d` as unknown, secant fallback) and the contact-edge
-//!   location;
+//!   analytic surface in the current configuration;
+//! * [`friction`]: the Coulomb–Orowan law, its return mapping and tangent rows;
+//! * [`model`]: the discrete model: boundary conditions, constraints, gaps, contact forces,
+//!   the friction history (what a solve does not change);
+//! * [`assembly`]: the reduced residual and tangent of a state (the mutable side of a
+//!   solve: the sparse tangent, the last forces, the work counters);
+//! * [`loading`]: the load stepping from one contact-edge event to the next, to a contact
+//!   width or (with [`pressure_target`]) to a mean pressure; [`unloading`]: back to zero
+//!   load;
+//! * [`event_search`]: which node touches next and at which slab displacement;
+//!   [`step_control`]: its regula falsi and the cutting of failed steps;
+//! * [`predictor`]: the load tangent and the predicted state of a step;
+//! * [`active_set`]: Newton passes alternating with contact-set updates;
+//! * [`newton`]: Newton with line search, the plain and the bordered (edge-event) step;
+//! * [`friction_step`]: the linear solve of a Newton step, with the semismooth choice of
+//!   each friction node's piece of the law;
 //! * [`linsys`]: the sparse direct solves through faer (the fallback chain of the
 //!   factorisations is described there);
-//! * [`shear_test`]: a block pressed onto a flat and sheared, verifying the friction law;
+//! * [`edge_rule`], [`measure`]: where the contact edge lies, and the point and deformed
+//!   state of a converged state;
 //! * [`curve`]: the computed curve (points, unloading points, last deformed state), the CSV
 //!   row of a point, and the work of a cycle;
 //! * [`error`]: why a curve could not be completed, with the points converged before;
 //! * [`convergence`]: interpolation of curves at fixed `a/λ` and the mesh-convergence
-//!   (Richardson) table.
+//!   (Richardson) table;
+//! * [`shear_test`]: a block pressed onto a flat and sheared, verifying the friction law.
+//!
+//! docs/architecture.md walks one frictional Newton iteration through these files.
 //!
 //! The solver does no I/O, and takes every physical parameter as an argument (the
 //! defaults live above it, in `crate::defaults`). A curve is complete (it reaches
@@ -41,19 +51,29 @@
 // Index loops mirror the tensor index notation of the documented formulas.
 #![allow(clippy::needless_range_loop)]
 
+pub mod active_set;
+pub mod assembly;
 pub mod contact;
 pub mod convergence;
 pub mod curve;
-pub mod edge;
+pub mod edge_rule;
 pub mod element;
 pub mod error;
+pub mod event_search;
 pub mod friction;
+pub mod friction_step;
 pub mod linsys;
+pub mod loading;
 pub mod material;
+pub mod measure;
 pub mod mesh;
 pub mod model;
+pub mod newton;
+pub mod predictor;
+pub mod pressure_target;
 pub mod shear_test;
-pub mod solver;
+pub mod step_control;
+pub mod unloading;
 
 pub use convergence::{
     convergence_table, mesh_convergence, mesh_convergence_levels, p_at, ConvergenceRow,
@@ -63,7 +83,7 @@ pub use curve::{
     cycle_work_over_estar_lambda2, Curve, CurvePoint, CurvePointParseError, DeformedState,
     LoadDirection, SolveWork,
 };
-pub use edge::{EdgeRule, DISCRETE_EDGE_FRACTION};
+pub use edge_rule::{EdgeRule, DISCRETE_EDGE_FRACTION};
 pub use error::{CurveFailure, SolveError};
 pub use friction::{CoulombOrowan, Interface};
 pub use material::estar_over_g;
@@ -146,8 +166,8 @@ pub struct SolveOptions {
     /// Target advance of `a/λ` per load step: the next edge node is the first one at
     /// least this far beyond the current edge. The default 0 steps node by node, which
     /// is the cheapest: skipping nodes makes the skipped ones enter contact in the
-    /// middle of a solve, which costs many more Newton iterations (measured: 26–54
-    /// instead of 4–7 per step at AR = 0.1).
+    /// middle of a solve, which costs many more Newton iterations per step
+    /// (docs/performance.md).
     pub da_target: f64,
     /// First slab-displacement increment in units of the amplitude `Δ`.
     pub first_step_over_amplitude: f64,
@@ -163,11 +183,8 @@ pub struct SolveOptions {
     /// Maximum line-search halvings.
     pub max_line_search: usize,
     /// Maximum line-search halvings of the bordered edge solve. A bordered step that
-    /// needs more is a poor start (the secant fallback takes over). Measured at
-    /// AR = 0.3 (64×32, with the predictor of the time, which repeated the last
-    /// increment): the bordered solve failed 11 times per curve, at iterations 1–3,
-    /// each after all its halvings; 8 instead of 40 halvings saved 6 % of the curve's
-    /// time with identical results.
+    /// needs more is a poor start, and the regula-falsi search takes over sooner than
+    /// after [`SolveOptions::max_line_search`] halvings, with the same results.
     pub max_edge_line_search: usize,
     /// Edge search: relative gap tolerance (w.r.t. the target node's initial gap).
     pub edge_gap_rtol: f64,
@@ -177,7 +194,7 @@ pub struct SolveOptions {
     /// Use the tangent (Euler) predictor (else extrapolate the last increment).
     pub tangent_predictor: bool,
     /// With friction, choose each node's stick/slip branch in the Newton step by where
-    /// the step lands (semismooth Newton, `Model::solve_newton`); else the
+    /// the step lands (semismooth Newton, [`friction_step`]); else the
     /// branch of the current state.
     pub semismooth_friction: bool,
     /// Edge search: maximum trial loads per step.
@@ -353,8 +370,9 @@ pub fn solve_curve(
     opts: &SolveOptions,
     on_step: &mut dyn FnMut(&CurvePoint),
 ) -> Result<Curve, Box<CurveFailure>> {
-    let (mut model, estar) = validated_model(problem, opts)?;
-    solver::trace(&mut model, opts, estar, on_step)
+    let (model, estar) = validated_model(problem, opts)?;
+    let mut asm = assembly::Assembly::new(&model);
+    loading::trace(&model, &mut asm, opts, estar, on_step)
 }
 
 /// The model of a validated problem and `E*/G`, or the input error as a failed curve.
@@ -377,7 +395,7 @@ fn validated_model(
 
 /// A loading–unloading cycle: the load curve as [`solve_curve`], then the unloading branch
 /// from `opts.until_a_over_lambda` back to zero load, with the friction history carried
-/// through ([`Curve::unloading`]; the stepping is described at `solver::unload`).
+/// through ([`Curve::unloading`]; the stepping is described at `unloading::unload`).
 ///
 /// `on_step` is called with every converged point and its branch. On failure the error
 /// comes with the points of both branches converged so far.
@@ -386,6 +404,7 @@ pub fn solve_cycle(
     opts: &SolveOptions,
     on_step: &mut dyn FnMut(LoadDirection, &CurvePoint),
 ) -> Result<Curve, Box<CurveFailure>> {
-    let (mut model, estar) = validated_model(problem, opts)?;
-    solver::trace_cycle(&mut model, opts, estar, on_step)
+    let (model, estar) = validated_model(problem, opts)?;
+    let mut asm = assembly::Assembly::new(&model);
+    unloading::trace_cycle(&model, &mut asm, opts, estar, on_step)
 }

@@ -1,12 +1,10 @@
-//! Discrete model: mesh, material, boundary conditions, contact elimination and
-//! assembly of the reduced residual and tangent.
+//! Discrete model: mesh, material, boundary conditions, contact by elimination and the
+//! friction history: what a solve reads and does not change (the mutable side is
+//! [`super::assembly::Assembly`]).
 //!
 //! Unknowns are current node positions. Each node owns two equation slots; a slot is
 //! either free, with a coefficient vector `c = ∂(x, y)/∂q` mapping the slot's unknown
-//! `q` to the node's position, or constrained (identity row). The reduced residual and
-//! tangent are `r_s = c_sᵀ g_node` and `K_st = c_sᵀ H c_t` (+ the contact curvature term
-//! `y_s'' ∂Π/∂y` on sliding nodes), where `g = ∂Π/∂x` and `H = ∂²Π/∂x²` are assembled
-//! from the elements.
+//! `q` to the node's position, or constrained (identity row) ([`Model::slot_map`]).
 //!
 //! Boundary conditions (units of λ, `h` the thickness, `d` the slab displacement, `d_x`
 //! its horizontal shift, 0 in the wavy problem):
@@ -23,11 +21,7 @@
 
 use super::contact::Indenter;
 use super::element::{self, QuadRef};
-use super::friction::{
-    Branch, BranchChoice, FrictionEval, FrictionLaw, FrictionRow, Interface, LawBranch, RegimeRow,
-    SlipHistory,
-};
-use super::linsys::{LinSolveError, RowChange, SparseSystem};
+use super::friction::{FrictionEval, FrictionLaw, Interface, SlipHistory};
 use super::material::NeoHooke;
 use super::mesh::Mesh;
 use super::Kinematics;
@@ -41,11 +35,6 @@ const PROJECTION_MAX_ITERATIONS: usize = 20;
 /// about ten ulps of a position `x ≤ ½` (one ulp is 1.1·10⁻¹⁶), i.e. at round-off.
 const PROJECTION_STEP_TOL: f64 = 1e-15;
 
-/// Most changed solves per Newton step in the semismooth choice of the friction branches
-/// ([`Model::solve_newton`]). The choice settles in one or two changes where it settles;
-/// a cap, not tuned: beyond it the assembled step is taken.
-const MAX_BRANCH_SWITCHES: usize = 8;
-
 /// Boundary condition of the lateral faces `X = 0` and `X = ½`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Lateral {
@@ -56,8 +45,9 @@ pub enum Lateral {
     Free,
 }
 
+/// What constrains a node's two slots.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Role {
+pub(super) enum Role {
     Interior,
     Top,
     Side,
@@ -80,22 +70,6 @@ pub struct State {
     pub slip: Vec<SlipHistory>,
 }
 
-/// Assembled energy and forces.
-#[derive(Clone, Debug)]
-pub struct Forces {
-    /// Total potential energy `Π` (units `G λ²` per unit depth).
-    pub energy: f64,
-    /// Full gradient `∂Π/∂x` (2 per node).
-    pub grad: Vec<f64>,
-    /// Reduced residual per slot (0 on constrained slots).
-    pub resid: Vec<f64>,
-    /// Derivative of the reduced residual with respect to the slab displacement `d`
-    /// (filled only when the matrix is assembled): `−Σ_top c_sᵀ H[·, y_top]`.
-    pub dresid_dd: Vec<f64>,
-    /// Largest element-level nodal force component (the round-off scale of the
-    /// assembled residual).
-    pub force_scale: f64,
-}
 
 /// The discrete model.
 #[derive(Clone, Debug)]
@@ -110,50 +84,18 @@ pub struct Model {
     pub indenter: Indenter,
     /// Lateral faces.
     pub lateral: Lateral,
-    friction: Option<FrictionLaw>,
-    refs: Vec<QuadRef>,
-    k_lin: Vec<[[f64; 8]; 8]>,
-    role: Vec<Role>,
-    /// Sparse tangent.
-    pub sys: SparseSystem,
-    /// The last state assembled and its forces: an assembly without the matrix of the
-    /// same state returns them (Newton's convergence check after a line search, the
-    /// active-set check after a converged solve, the measurement).
-    cache: Option<(State, Forces)>,
-    /// Tangent assemblies so far ([`super::SolveWork`]).
-    tangent_assemblies: usize,
-    /// The friction rows of the last assembled tangent, one per active sliding node (open
-    /// ones included; empty without friction).
-    friction_rows: Vec<FrictionRow>,
+    /// The friction law in solver units (`None` without friction).
+    pub(super) friction: Option<FrictionLaw>,
+    /// Reference geometry of each element.
+    pub(super) refs: Vec<QuadRef>,
+    /// Element stiffness matrices of linear kinematics (empty for finite kinematics).
+    pub(super) k_lin: Vec<[[f64; 8]; 8]>,
+    /// Boundary role of each node.
+    pub(super) role: Vec<Role>,
 }
 
-/// The equations that the friction rows and the columns they touch can occupy: the contact
-/// face and the nodes of its elements (the layer above it), ordered last in the
-/// factorisation so that the Woodbury solve reads `S⁻¹` on them from the factor's trailing
-/// block (`linsys`). The face nodes' sliding slots, the rows that carry the updates, come
-/// last of all: the trailing block's forward solve starts at the first of them.
-fn friction_block(mesh: &Mesh) -> Vec<usize> {
-    let face: std::collections::BTreeSet<usize> = mesh.bottom.iter().copied().collect();
-    let near_face: std::collections::BTreeSet<usize> = mesh
-        .quads
-        .iter()
-        .filter(|q| q.iter().any(|n| face.contains(n)))
-        .flatten()
-        .copied()
-        .collect();
-    let mut dofs = Vec::new();
-    for &n in &near_face {
-        if !face.contains(&n) {
-            dofs.push(2 * n);
-        }
-        dofs.push(2 * n + 1);
-    }
-    // the face nodes' sliding slots (slot 2n) last of all
-    dofs.extend(mesh.bottom.iter().map(|&n| 2 * n));
-    dofs
-}
 
-type SlotMap = Vec<[Option<[f64; 2]>; 2]>;
+pub(super) type SlotMap = Vec<[Option<[f64; 2]>; 2]>;
 
 impl Model {
     /// Build the model. The interface's `τ_max/E*` is converted to solver units (`G = 1`)
@@ -223,22 +165,6 @@ impl Model {
         for &t in &mesh.top {
             role[t] = Role::Top;
         }
-        let elem_dofs: Vec<[usize; 8]> = mesh
-            .quads
-            .iter()
-            .map(|q| {
-                let mut d = [0; 8];
-                for a in 0..4 {
-                    d[2 * a] = 2 * q[a];
-                    d[2 * a + 1] = 2 * q[a] + 1;
-                }
-                d
-            })
-            .collect();
-        let mut sys = SparseSystem::new(2 * mesh.nodes.len(), &elem_dofs);
-        if friction.is_some() {
-            sys.order_last(&friction_block(&mesh));
-        }
         Self {
             mesh,
             mat,
@@ -249,10 +175,6 @@ impl Model {
             refs,
             k_lin,
             role,
-            sys,
-            cache: None,
-            tangent_assemblies: 0,
-            friction_rows: Vec::new(),
         }
     }
 
@@ -292,7 +214,7 @@ impl Model {
         b
     }
 
-    fn slot_map(&self, st: &State) -> SlotMap {
+    pub(super) fn slot_map(&self, st: &State) -> SlotMap {
         let bidx = self.bottom_slot();
         (0..self.mesh.nodes.len())
             .map(|n| match self.role[n] {
@@ -357,12 +279,12 @@ impl Model {
             .collect()
     }
 
-    fn elem_x(&self, st: &State, e: usize) -> [[f64; 2]; 4] {
+    pub(super) fn elem_x(&self, st: &State, e: usize) -> [[f64; 2]; 4] {
         let q = self.mesh.quads[e];
         [st.x[q[0]], st.x[q[1]], st.x[q[2]], st.x[q[3]]]
     }
 
-    fn linear_elem(&self, st: &State, e: usize) -> (f64, [f64; 8]) {
+    pub(super) fn linear_elem(&self, st: &State, e: usize) -> (f64, [f64; 8]) {
         let q = self.mesh.quads[e];
         let mut u = [0.0; 8];
         for a in 0..4 {
@@ -394,299 +316,9 @@ impl Model {
         Some(e)
     }
 
-    /// Assemble energy, gradient, reduced residual and (if `with_matrix`) the reduced
-    /// tangent into `self.sys`. `None` if any element is inverted. With friction, `energy`
-    /// is the elastic energy only (the problem is no longer a minimisation).
-    pub fn assemble(&mut self, st: &State, with_matrix: bool) -> Option<Forces> {
-        if !with_matrix {
-            if let Some((c, f)) = &self.cache {
-                if c == st {
-                    return Some(f.clone());
-                }
-            }
-        }
-        let nn = self.mesh.nodes.len();
-        let map = self.slot_map(st);
-        let mut grad = vec![0.0; 2 * nn];
-        let mut energy = 0.0;
-        let mut force_scale = 0.0_f64;
-        let mut dresid_dd = vec![0.0; if with_matrix { 2 * nn } else { 0 }];
-        // Friction: active sliding nodes (contact-face index per node) and, per such node,
-        // the rows (−y_s', 1)ᵀ H[node, ·] mapped to slots (column, value) and their
-        // derivative with respect to d (the Coulomb regime needs them, see `friction`).
-        let fric_of: Vec<Option<usize>> = match self.friction {
-            Some(_) if with_matrix => {
-                let mut f = vec![None; nn];
-                for (k, &n) in self.mesh.bottom.iter().enumerate() {
-                    if st.active[k] && map[n][0].is_some() {
-                        f[n] = Some(k);
-                    }
-                }
-                f
-            }
-            _ => Vec::new(),
-        };
-        let n_fric = if fric_of.is_empty() {
-            0
-        } else {
-            self.mesh.bottom.len()
-        };
-        let mut fric_rows: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n_fric];
-        let mut fric_dd = vec![0.0; n_fric];
-        if with_matrix {
-            self.sys.clear();
-            self.friction_rows.clear();
-            self.tangent_assemblies += 1;
-        }
-        for e in 0..self.mesh.quads.len() {
-            let q = self.mesh.quads[e];
-            let (en, g, hess) = match self.kin {
-                Kinematics::Finite if !with_matrix => {
-                    let (en, g) = element::gradient(&self.refs[e], &self.mat, &self.elem_x(st, e))?;
-                    (en, g, [[0.0; 8]; 8])
-                }
-                Kinematics::Finite => {
-                    let t = element::tangent(&self.refs[e], &self.mat, &self.elem_x(st, e))?;
-                    (t.energy, t.grad, t.hess)
-                }
-                Kinematics::Linear => {
-                    let (en, g) = self.linear_elem(st, e);
-                    (en, g, self.k_lin[e])
-                }
-            };
-            energy += en;
-            force_scale = g.iter().fold(force_scale, |m, v| m.max(v.abs()));
-            for a in 0..4 {
-                grad[2 * q[a]] += g[2 * a];
-                grad[2 * q[a] + 1] += g[2 * a + 1];
-            }
-            if with_matrix {
-                for b in 0..4 {
-                    if self.role[q[b]] != Role::Top {
-                        continue;
-                    }
-                    for a in 0..4 {
-                        for s in 0..2 {
-                            if let Some(ca) = map[q[a]][s] {
-                                dresid_dd[2 * q[a] + s] -= ca[0] * hess[2 * a][2 * b + 1]
-                                    + ca[1] * hess[2 * a + 1][2 * b + 1];
-                            }
-                        }
-                    }
-                }
-                let pos = &self.sys.elem_pos[e];
-                for a in 0..4 {
-                    for s in 0..2 {
-                        let Some(ca) = map[q[a]][s] else { continue };
-                        // row vector caᵀ H[a, ·]
-                        let mut row = [0.0; 8];
-                        for (col, rv) in row.iter_mut().enumerate() {
-                            *rv = ca[0] * hess[2 * a][col] + ca[1] * hess[2 * a + 1][col];
-                        }
-                        for b in 0..4 {
-                            for t in 0..2 {
-                                let Some(cb) = map[q[b]][t] else { continue };
-                                let v = row[2 * b] * cb[0] + row[2 * b + 1] * cb[1];
-                                self.sys.values[pos[8 * (2 * a + s) + 2 * b + t]] += v;
-                            }
-                        }
-                    }
-                    if let Some(k) = fric_of.get(q[a]).copied().flatten() {
-                        let sl = self.contact_slope(st, q[a]);
-                        for b in 0..4 {
-                            let nrow = |col: usize| -sl * hess[2 * a][col] + hess[2 * a + 1][col];
-                            if self.role[q[b]] == Role::Top {
-                                fric_dd[k] -= nrow(2 * b + 1);
-                            }
-                            for t in 0..2 {
-                                let Some(cb) = map[q[b]][t] else { continue };
-                                let v = nrow(2 * b) * cb[0] + nrow(2 * b + 1) * cb[1];
-                                fric_rows[k].push((2 * q[b] + t, v));
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        let mut resid = vec![0.0; 2 * nn];
-        for n in 0..nn {
-            for s in 0..2 {
-                if let Some(c) = map[n][s] {
-                    resid[2 * n + s] = c[0] * grad[2 * n] + c[1] * grad[2 * n + 1];
-                }
-            }
-        }
-        if with_matrix {
-            for n in 0..nn {
-                for s in 0..2 {
-                    if map[n][s].is_none() {
-                        self.sys.values[self.sys.diag_pos[2 * n + s]] = 1.0;
-                    }
-                }
-            }
-            if self.kin == Kinematics::Finite {
-                for (k, &n) in self.mesh.bottom.iter().enumerate() {
-                    if st.active[k] && map[n][0].is_some() {
-                        self.sys.values[self.sys.diag_pos[2 * n]] +=
-                            grad[2 * n + 1] * self.indenter.curvature(st.x[n][0]);
-                    }
-                }
-            }
-        }
-        if let Some(law) = self.friction {
-            for (k, &n) in self.mesh.bottom.iter().enumerate() {
-                if !st.active[k] || map[n][0].is_none() {
-                    continue;
-                }
-                let f = self.friction_eval(st, k, &grad, &law);
-                resid[2 * n] += f.force;
-                if !with_matrix {
-                    continue;
-                }
-                // the friction row of the tangent (formulas in `friction`) under either
-                // regime, kept for the semismooth step (`friction_rows`); the assembled
-                // regime's row goes in: its own entry into the symmetric values, the rest
-                // as a row update (see `linsys`), every friction row an update row so that
-                // a switch of the semismooth step changes updates only
-                let (own_phi, own_dphi) = f.coulomb_own(&law, [grad[2 * n], grad[2 * n + 1]]);
-                let mut coulomb_phi = vec![(2 * n, own_phi)];
-                coulomb_phi.extend(fric_rows[k].iter().map(|&(c, v)| (c, law.mu * v)));
-                let coulomb = RegimeRow {
-                    per_phi: coulomb_phi,
-                    w_limit: own_dphi,
-                    per_phi_dd: law.mu * fric_dd[k],
-                };
-                let cn = map[n][0].expect("sliding slot");
-                let (own_phi, own_dphi) = f.orowan_own(&law, cn);
-                let mut orowan_phi = vec![(2 * n, own_phi)];
-                for (side, m) in [k.wrapping_sub(1), k + 1].into_iter().enumerate() {
-                    let Some(&nm) = self.mesh.bottom.get(m) else {
-                        continue;
-                    };
-                    for t in 0..2 {
-                        let Some(cm) = map[nm][t] else { continue };
-                        orowan_phi.push((2 * nm + t, f.orowan_neighbour(&law, side, cm)));
-                    }
-                }
-                let orowan = RegimeRow {
-                    per_phi: orowan_phi,
-                    w_limit: own_dphi,
-                    per_phi_dd: 0.0,
-                };
-                let row = f.row(2 * n, coulomb, orowan);
-                let assembled = row.law_row(row.at, law.slip_c);
-                self.sys.values[self.sys.diag_pos[2 * n]] += assembled.own;
-                self.sys.add_to_row(2 * n, 2 * n, 0.0);
-                for (col, v) in assembled.others {
-                    self.sys.add_to_row(2 * n, col, v);
-                }
-                dresid_dd[2 * n] += assembled.force_dd;
-                self.friction_rows.push(row);
-            }
-        }
-        let forces = Forces {
-            energy,
-            grad,
-            resid,
-            dresid_dd,
-            force_scale,
-        };
-        self.cache = Some((st.clone(), forces.clone()));
-        Some(forces)
-    }
-
-    /// Solve the Newton system of the last assembled tangent, `rhs[0] = −r` and, if
-    /// present, `rhs[1] = −∂r/∂d`; `direction` maps the solutions to the step `δq` (for
-    /// the bordered solve, a combination of the two).
-    ///
-    /// With friction and `semismooth`, the step is a semismooth Newton step of the
-    /// piecewise-smooth friction law: each node's piece of the law (threshold regime and
-    /// return-mapping branch) is the one its linearised state after the step lies on, not
-    /// the one of the current state. A sliding node whose trial slip after the step,
-    /// `e* + w δx`, leaves its slip branch (lands in the stick band or beyond it, on the
-    /// other side) is put on the stick branch, and back on its slip branch for good if its
-    /// stick step lands there ([`BranchChoice::after_step`]); a node whose linearised
-    /// thresholds cross takes the smaller one, Coulomb or Orowan
-    /// ([`FrictionRow::regime_after`]). The rows and residuals of the new pieces replace the
-    /// assembled ones ([`FrictionRow::switched`], exact inside the band: unit test; beyond
-    /// it the threshold's sensitivity keeps the band's factor, [`FrictionRow::law_row`]) and
-    /// the system is solved again by Woodbury with the same factorisation, until the pieces
-    /// agree with the step; if they have not within [`MAX_BRANCH_SWITCHES`], the assembled
-    /// step is taken.
-    ///
-    /// Why: the slip tangent is flat, so a node whose solution lies in the narrow stick band
-    /// is thrown from slip one way to slip the other and back (Newton's cycle on a
-    /// saturating law), and a node near the Coulomb–Orowan crossover flips between the two
-    /// thresholds; the line search then crawls through either with steps of 1/32–1/4. Both
-    /// switches change the path to each equilibrium, not the equilibrium (every p̄/E* of the
-    /// 18 Fig. 3 curves within 8·10⁻⁹ of the plain step's; test
-    /// `semismooth_branch_choice_changes_the_path_not_the_curve` in `tests/fe_friction.rs`).
-    /// Measured (`cargo run --release --example fig3_work`): 6863 tangent assemblies over the
-    /// 18 Fig. 3 curves against 11847 without the switches (README, "Frictional speed").
-    /// Tried and left out: letting stick nodes slide when
-    /// their step leaves the band, or any node take whatever branch its step lands on (the
-    /// switches cycled or cost more iterations), switching into and out of the open regime
-    /// ([`FrictionRow::regime_after`]), and the switch in the predictor's load tangent (no
-    /// gain).
-    pub(crate) fn solve_newton(
-        &mut self,
-        rhs: &mut [Vec<f64>],
-        semismooth: bool,
-        direction: impl Fn(&[Vec<f64>]) -> Vec<f64>,
-    ) -> Result<(), LinSolveError> {
-        let law = match self.friction {
-            Some(law) if semismooth => law,
-            _ => return self.sys.solve_multi(rhs),
-        };
-        let rows = &self.friction_rows;
-        let with_load_column = rhs.len() > 1;
-        let mut assumed: Vec<LawBranch> = rows.iter().map(|r| r.at).collect();
-        let mut choices: Vec<BranchChoice> = rows
-            .iter()
-            .map(|r| BranchChoice::assembled(r.at.slip))
-            .collect();
-        let switching = self
-            .sys
-            .solve_multi_switching(rhs, MAX_BRANCH_SWITCHES, |solutions| {
-                let step = direction(solutions);
-                let mut landed = assumed.clone();
-                for (i, r) in rows.iter().enumerate() {
-                    let slip = Branch::of(r.trial_slip + r.w * step[r.row], law.slip_c);
-                    choices[i] = choices[i].after_step(r.at.slip, slip);
-                    landed[i] = LawBranch {
-                        regime: r.regime_after(&step),
-                        slip: choices[i].assumed,
-                    };
-                }
-                if landed == assumed {
-                    return None;
-                }
-                assumed = landed;
-                let changes = rows
-                    .iter()
-                    .zip(&assumed)
-                    .filter(|(r, &b)| r.at != b)
-                    .map(|(r, &b)| {
-                        let (entries, d_resid, d_resid_dd) = r.switched(b, law.slip_c);
-                        let mut rhs = vec![-d_resid];
-                        if with_load_column {
-                            rhs.push(-d_resid_dd);
-                        }
-                        RowChange {
-                            row: r.row,
-                            entries,
-                            rhs,
-                        }
-                    })
-                    .collect();
-                Some(changes)
-            });
-        switching.map(|_| ())
-    }
-
     /// Slope `y_s'` of the indenter under contact-face node `n` as the contact law sees
     /// it (0 for linear kinematics).
-    fn contact_slope(&self, st: &State, n: usize) -> f64 {
+    pub(super) fn contact_slope(&self, st: &State, n: usize) -> f64 {
         match self.kin {
             Kinematics::Finite => self.indenter.slope(st.x[n][0]),
             Kinematics::Linear => 0.0,
@@ -710,7 +342,7 @@ impl Model {
     }
 
     /// Friction force of active contact-face node `k` ([`FrictionLaw::eval`]).
-    fn friction_eval(&self, st: &State, k: usize, grad: &[f64], law: &FrictionLaw) -> FrictionEval {
+    pub(super) fn friction_eval(&self, st: &State, k: usize, grad: &[f64], law: &FrictionLaw) -> FrictionEval {
         let b = &self.mesh.bottom;
         let n = b[k];
         let curvature = match self.kin {
@@ -878,6 +510,15 @@ impl Model {
         (c, dc)
     }
 
+    /// The change `∇c·z` of the gap `c` of free contact-face node `k` along a slot vector
+    /// `z` ([`Self::edge_constraint`]), as a function of `z`: with the load tangent `z`
+    /// ([`super::predictor::load_tangent`]) the rate `∂g_k/∂d` at which the gap closes.
+    pub fn gap_rate_along(&self, st: &State, k: usize) -> impl Fn(&[f64]) -> f64 {
+        let node = self.mesh.bottom[k];
+        let (_, dc) = self.edge_constraint(st, k);
+        move |z: &[f64]| dc[0] * z[2 * node] + dc[1] * z[2 * node + 1]
+    }
+
     /// Multipliers `λ_i = ∂Π/∂y_i` of the contact-face nodes (0 on free nodes).
     pub fn multipliers(&self, st: &State, grad: &[f64]) -> Vec<f64> {
         self.mesh
@@ -894,126 +535,8 @@ impl Model {
         -self.mesh.top.iter().map(|&n| grad[2 * n + 1]).sum::<f64>()
     }
 
-    /// The work done so far: tangent assemblies and factorisations.
-    pub fn work(&self) -> super::SolveWork {
-        super::SolveWork {
-            tangent_assemblies: self.tangent_assemblies,
-            factorisations: self.sys.factorisations(),
-            woodbury_unit_solves: self.sys.woodbury_unit_solves(),
-        }
-    }
-
     /// Number of nodes.
     pub fn num_nodes(&self) -> usize {
         self.mesh.nodes.len()
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::fe::friction::Regime;
-    use crate::fe::{build_model, Interface, LayerProblem, MeshLevel, SolveOptions};
-
-    /// A pressed, sheared state of the coarse AR 0.3 model under friction coefficient `mu`
-    /// and stick regularisation `elastic_slip_over_element` (τ_max/E* = 0.1): the layer
-    /// moved down by 0.01 λ, the contact-face nodes that the indenter then pushes up in
-    /// contact, moved along it beyond their stick band.
-    fn sheared(mu: f64, elastic_slip_over_element: f64) -> (Model, State) {
-        let problem = LayerProblem {
-            aspect_ratio: 0.3,
-            thickness_over_lambda: 1.0,
-            kappa_over_g: 1000.0,
-            kinematics: Kinematics::Finite,
-            interface: Interface::coulomb_orowan(mu, 0.1, elastic_slip_over_element),
-        };
-        let opts = SolveOptions {
-            mesh: MeshLevel::Coarse,
-            ..Default::default()
-        };
-        let model = build_model(&problem, &opts);
-        let mut st = model.initial_state();
-        st.d = 0.01;
-        for p in st.x.iter_mut() {
-            p[1] -= st.d;
-        }
-        for k in 1..model.mesh.bottom.len() {
-            let n = model.mesh.bottom[k];
-            if model.indenter.y(st.x[n][0]) < -0.8 * st.d {
-                break;
-            }
-            model.activate(&mut st, k);
-            st.x[n][0] += 1e-4 * k as f64;
-        }
-        model.enforce_constraints(&mut st);
-        (model, st)
-    }
-
-    /// Model `to`'s tangent row, residual and `∂r/∂d` on each friction node, against model
-    /// `from`'s switched to `to`'s piece of the law ([`FrictionRow::switched`], with `to`'s
-    /// elastic-slip limit) where `selected` picks the pair; returns how many were compared.
-    fn compare_switched(
-        from: &mut Model,
-        to: &mut Model,
-        st: &State,
-        selected: impl Fn(LawBranch, LawBranch) -> bool,
-    ) -> usize {
-        let ff = from.assemble(st, true).expect("not inverted");
-        let ft = to.assemble(st, true).expect("not inverted");
-        let slip_c = to.elastic_slip_limit().expect("friction");
-        let n = from.sys.size();
-        let mut compared = 0;
-        for (rf, rt) in from.friction_rows.iter().zip(&to.friction_rows) {
-            assert_eq!(rf.row, rt.row);
-            if !selected(rf.at, rt.at) {
-                continue;
-            }
-            compared += 1;
-            let (entries, d_resid, d_resid_dd) = rf.switched(rt.at, slip_c);
-            let scale = (0..n).fold(0.0_f64, |m, c| m.max(to.sys.get(rt.row, c).abs()));
-            for c in 0..n {
-                let extra: f64 = entries.iter().filter(|e| e.0 == c).map(|e| e.1).sum();
-                let switched = from.sys.get(rf.row, c) + extra;
-                let assembled = to.sys.get(rt.row, c);
-                assert!(
-                    (switched - assembled).abs() <= 1e-12 * scale,
-                    "row {}, column {c}: switched {switched} vs assembled {assembled}",
-                    rf.row
-                );
-            }
-            let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + a.abs().max(b.abs()));
-            assert!(close(ff.resid[rf.row] + d_resid, ft.resid[rt.row]));
-            assert!(close(
-                ff.dresid_dd[rf.row] + d_resid_dd,
-                ft.dresid_dd[rt.row]
-            ));
-        }
-        compared
-    }
-
-    /// The semismooth step's switches are exact. Regime: on every node that the Coulomb law
-    /// (μ = 10⁻⁴) puts in the Coulomb regime and the Orowan law (μ = 50, same τ_max) in the
-    /// Orowan regime, the Coulomb model's tangent row, residual and `∂r/∂d` switched to the
-    /// Orowan regime are the Orowan model's assembled ones (the Orowan row does not depend
-    /// on μ). Branch: a sliding node switched to stick with the limit `e_c` of a model whose
-    /// wide band (100 element lengths) holds it stuck has that model's row (the slip row does
-    /// not depend on `e_c`). The assembled tangents are checked against central differences
-    /// in `tests/fe_tangent.rs`.
-    #[test]
-    fn switched_rows_are_the_other_pieces_assembled_rows() {
-        let (mut coulomb, st) = sheared(1e-4, 0.005);
-        let (mut orowan, _) = sheared(50.0, 0.005);
-        let (mut stuck, _) = sheared(50.0, 100.0);
-        let regimes = compare_switched(&mut coulomb, &mut orowan, &st, |a, b| {
-            a.regime == Regime::Coulomb && b.regime == Regime::Orowan && a.slip == b.slip
-        });
-        assert!(regimes >= 3, "only {regimes} nodes in both regimes");
-        let branches = compare_switched(&mut orowan, &mut stuck, &st, |a, b| {
-            a.regime == b.regime && a.slip != Branch::Stick && b.slip == Branch::Stick
-        });
-        assert!(
-            branches >= 3,
-            "only {branches} nodes switched from slip to stick"
-        );
     }
 }

@@ -20,7 +20,8 @@ use super::friction::{CoulombOrowan, Interface};
 use super::material::{estar_over_g, NeoHooke};
 use super::mesh::{Grading, Mesh};
 use super::model::{Lateral, Model};
-use super::solver::equilibrate;
+use super::active_set::equilibrate;
+use super::assembly::Assembly;
 use super::{Kinematics, SolveError, SolveOptions};
 
 /// The press-then-shear test.
@@ -84,7 +85,7 @@ pub fn press_and_shear(test: &ShearTest) -> Result<Vec<ShearPoint>, SolveError> 
         kappa: test.kappa_over_g,
     };
     let estar = estar_over_g(test.kappa_over_g);
-    let mut model = Model::new(
+    let model = Model::new(
         mesh,
         mat,
         Kinematics::Finite,
@@ -92,6 +93,7 @@ pub fn press_and_shear(test: &ShearTest) -> Result<Vec<ShearPoint>, SolveError> 
         Interface::CoulombOrowan(test.friction),
         Lateral::Free,
     );
+    let mut asm = Assembly::new(&model);
     let opts = SolveOptions::default();
     let e_c = model.elastic_slip_limit().expect("friction is built");
     let mut st = model.initial_state();
@@ -118,13 +120,13 @@ pub fn press_and_shear(test: &ShearTest) -> Result<Vec<ShearPoint>, SolveError> 
             st.dx = dx;
         }
         model.enforce_constraints(&mut st);
-        equilibrate(&mut model, &mut st, &opts, None, None)
+        equilibrate(&model, &mut asm, &mut st, &opts, None)
             .map_err(|f| f.into_error(step, st.d))?;
         model.commit_slip(&mut st);
         if step <= n_press {
             continue;
         }
-        let f = model.assemble(&st, false).ok_or(SolveError::Inverted {
+        let f = asm.assemble(&model, &st, false).ok_or(SolveError::Inverted {
             step,
             iteration: 0,
             residual: f64::NAN,

@@ -1,0 +1,119 @@
+//! The active-set loop of one load step: Newton solves ([`super::newton`]) alternating with
+//! updates of the contact set until it no longer changes.
+//!
+//! After each converged Newton solve, nodes with `λ < 0` (with friction: normal force
+//! `N < 0`) are released and penetrating nodes activated (moved to their closest point on
+//! the indenter, see [`super::contact`]); then again. Passes whose active set may still
+//! change are converged loosely, the confirming pass tightly. [`equilibrate`] holds the
+//! slab displacement fixed; [`equilibrate_event`] solves for it too, bringing the event's
+//! target node onto the indenter.
+
+use super::assembly::Assembly;
+use super::model::{Model, State};
+use super::newton::{newton, newton_bordered, StepFail};
+use super::SolveOptions;
+
+/// Floor of the multiplier scale `max|λ|` of the release test
+/// `λ < −multiplier_rtol · max|λ|`: when every multiplier vanishes the test stays a
+/// comparison with a (tiny) negative number. Safeguard, far below any force of the
+/// problem and above the underflow threshold of doubles.
+const MULTIPLIER_SCALE_FLOOR: f64 = 1e-300;
+
+/// Converge one load step at its slab displacement: Newton passes ([`newton`]) and
+/// active-set updates. `free_node` names a contact-face node that is never activated (the
+/// target of an edge event, below its event). Returns the total number of Newton
+/// iterations.
+pub(crate) fn equilibrate(
+    model: &Model,
+    asm: &mut Assembly,
+    st: &mut State,
+    opts: &SolveOptions,
+    free_node: Option<usize>,
+) -> Result<usize, StepFail> {
+    active_set_passes(model, asm, st, opts, free_node, |model, asm, st, rtol| {
+        newton(model, asm, st, opts, rtol)
+    })
+}
+
+/// Converge the edge event on contact-face node `node`: the slab displacement is an unknown
+/// too and the node, held free, is brought onto the indenter within `gap_tol` (bordered
+/// Newton passes, [`newton_bordered`]), with active-set updates. Returns the total number
+/// of Newton iterations.
+pub(crate) fn equilibrate_event(
+    model: &Model,
+    asm: &mut Assembly,
+    st: &mut State,
+    opts: &SolveOptions,
+    node: usize,
+    gap_tol: f64,
+) -> Result<usize, StepFail> {
+    active_set_passes(model, asm, st, opts, Some(node), |model, asm, st, rtol| {
+        newton_bordered(model, asm, st, opts, node, gap_tol, rtol)
+    })
+}
+
+/// The active-set loop: `newton_pass` at a residual tolerance, then release and activation
+/// (`free_node` never activated), until a pass at the tight tolerance leaves the set as it
+/// is.
+fn active_set_passes(
+    model: &Model,
+    asm: &mut Assembly,
+    st: &mut State,
+    opts: &SolveOptions,
+    free_node: Option<usize>,
+    mut newton_pass: impl FnMut(&Model, &mut Assembly, &mut State, f64) -> Result<usize, StepFail>,
+) -> Result<usize, StepFail> {
+    let mut total = 0;
+    // Passes whose active set may still change are converged loosely
+    // (`loose_residual_rtol`); the pass that confirms the set is converged tightly.
+    let mut loose = true;
+    for _ in 0..opts.max_active_set_updates {
+        let rtol = if loose {
+            opts.loose_residual_rtol
+        } else {
+            opts.residual_rtol
+        };
+        total += newton_pass(model, asm, st, rtol)?;
+        let f = asm.assemble(model, st, false).ok_or(StepFail::Inverted {
+            iteration: total,
+            residual: f64::NAN,
+        })?;
+        // Release test: the vertical multiplier λ = ∂Π/∂y without friction (the same sign as
+        // the normal force at equilibrium, and insensitive to the tangential residual left by
+        // loose passes: testing N there costs more Newton iterations); the normal force N
+        // with friction, where λ = (N + y_s' T)/w can differ in sign from N.
+        let lam = if model.is_potential() {
+            model.multipliers(st, &f.grad)
+        } else {
+            model.normal_forces(st, &f.grad)
+        };
+        let gaps = model.gaps(st);
+        let lam_scale = lam
+            .iter()
+            .fold(0.0_f64, |m, l| m.max(l.abs()))
+            .max(MULTIPLIER_SCALE_FLOOR);
+        let gap_tol = opts.gap_tolerance_over_amplitude * model.indenter.amplitude;
+        let mut changed = false;
+        for k in 0..st.active.len() {
+            if st.active[k] {
+                if lam[k] < -opts.multiplier_rtol * lam_scale {
+                    st.active[k] = false;
+                    changed = true;
+                }
+            } else if gaps[k] < -gap_tol && free_node != Some(k) {
+                model.activate(st, k);
+                changed = true;
+            }
+        }
+        if !changed {
+            if !loose {
+                return Ok(total);
+            }
+            loose = false;
+        }
+        model.enforce_constraints(st);
+    }
+    Err(StepFail::Cycling {
+        iterations: opts.max_active_set_updates,
+    })
+}

@@ -1,0 +1,429 @@
+//! Assembly of the reduced residual and tangent of a [`Model`] state.
+//!
+//! Unknowns are current node positions. Each node owns two equation slots; a slot is
+//! either free, with a coefficient vector `c = ∂(x, y)/∂q` mapping the slot's unknown
+//! `q` to the node's position, or constrained (identity row). The reduced residual and
+//! tangent are `r_s = c_sᵀ g_node` and `K_st = c_sᵀ H c_t` (+ the contact curvature term
+//! `y_s'' ∂Π/∂y` on sliding nodes), where `g = ∂Π/∂x` and `H = ∂²Π/∂x²` are assembled
+//! from the elements; with friction, each active sliding node adds its friction force to
+//! its residual and its friction row to the tangent (formulas in [`super::friction`]).
+//!
+//! [`Assembly`] is the mutable side of a solve: the sparse tangent assembled into, the
+//! forces of the last state assembled, the friction rows of the last tangent (read by the
+//! semismooth step, [`super::friction_step`]) and the work counters. The [`Model`] it
+//! assembles is not changed by a solve.
+
+use super::element;
+use super::friction::{FrictionRow, RegimeRow};
+use super::linsys::SparseSystem;
+use super::mesh::Mesh;
+use super::model::{Model, Role, State};
+use super::Kinematics;
+
+/// Assembled energy and forces.
+#[derive(Clone, Debug)]
+pub struct Forces {
+    /// Total potential energy `Π` (units `G λ²` per unit depth).
+    pub energy: f64,
+    /// Full gradient `∂Π/∂x` (2 per node).
+    pub grad: Vec<f64>,
+    /// Reduced residual per slot (0 on constrained slots).
+    pub resid: Vec<f64>,
+    /// Derivative of the reduced residual with respect to the slab displacement `d`
+    /// (filled only when the matrix is assembled): `−Σ_top c_sᵀ H[·, y_top]`.
+    pub dresid_dd: Vec<f64>,
+    /// Largest element-level nodal force component (the round-off scale of the
+    /// assembled residual).
+    pub force_scale: f64,
+}
+
+/// The mutable state of the Newton solves of one model.
+#[derive(Clone, Debug)]
+pub struct Assembly {
+    /// Sparse tangent of the last assembly with the matrix.
+    pub sys: SparseSystem,
+    /// The last state assembled and its forces: an assembly without the matrix of the
+    /// same state returns them (Newton's convergence check after a line search, the
+    /// active-set check after a converged solve, the measurement).
+    cache: Option<(State, Forces)>,
+    /// Tangent assemblies so far ([`super::SolveWork`]).
+    tangent_assemblies: usize,
+    /// The friction rows of the last assembled tangent, one per active sliding node (open
+    /// ones included; empty without friction).
+    pub(super) friction_rows: Vec<FrictionRow>,
+}
+
+/// The equations that the friction rows and the columns they touch can occupy: the contact
+/// face and the nodes of its elements (the layer above it), ordered last in the
+/// factorisation so that the Woodbury solve reads `S⁻¹` on them from the factor's trailing
+/// block (`linsys`). The face nodes' sliding slots, the rows that carry the updates, come
+/// last of all: the trailing block's forward solve starts at the first of them.
+fn friction_block(mesh: &Mesh) -> Vec<usize> {
+    let face: std::collections::BTreeSet<usize> = mesh.bottom.iter().copied().collect();
+    let near_face: std::collections::BTreeSet<usize> = mesh
+        .quads
+        .iter()
+        .filter(|q| q.iter().any(|n| face.contains(n)))
+        .flatten()
+        .copied()
+        .collect();
+    let mut dofs = Vec::new();
+    for &n in &near_face {
+        if !face.contains(&n) {
+            dofs.push(2 * n);
+        }
+        dofs.push(2 * n + 1);
+    }
+    // the face nodes' sliding slots (slot 2n) last of all
+    dofs.extend(mesh.bottom.iter().map(|&n| 2 * n));
+    dofs
+}
+
+impl Assembly {
+    /// The sparsity pattern of `model` (every element couples its eight slots), with the
+    /// friction block ordered last when the model has friction.
+    pub fn new(model: &Model) -> Self {
+        let mesh = &model.mesh;
+        let elem_dofs: Vec<[usize; 8]> = mesh
+            .quads
+            .iter()
+            .map(|q| {
+                let mut d = [0; 8];
+                for a in 0..4 {
+                    d[2 * a] = 2 * q[a];
+                    d[2 * a + 1] = 2 * q[a] + 1;
+                }
+                d
+            })
+            .collect();
+        let mut sys = SparseSystem::new(2 * mesh.nodes.len(), &elem_dofs);
+        if !model.is_potential() {
+            sys.order_last(&friction_block(mesh));
+        }
+        Self {
+            sys,
+            cache: None,
+            tangent_assemblies: 0,
+            friction_rows: Vec::new(),
+        }
+    }
+
+    /// Assemble energy, gradient, reduced residual and (if `with_matrix`) the reduced
+    /// tangent into [`Assembly::sys`]. `None` if any element is inverted. With friction, `energy`
+    /// is the elastic energy only (the problem is no longer a minimisation).
+    pub fn assemble(&mut self, model: &Model, st: &State, with_matrix: bool) -> Option<Forces> {
+        if !with_matrix {
+            if let Some((c, f)) = &self.cache {
+                if c == st {
+                    return Some(f.clone());
+                }
+            }
+        }
+        let nn = model.mesh.nodes.len();
+        let map = model.slot_map(st);
+        let mut grad = vec![0.0; 2 * nn];
+        let mut energy = 0.0;
+        let mut force_scale = 0.0_f64;
+        let mut dresid_dd = vec![0.0; if with_matrix { 2 * nn } else { 0 }];
+        // Friction: active sliding nodes (contact-face index per node) and, per such node,
+        // the rows (−y_s', 1)ᵀ H[node, ·] mapped to slots (column, value) and their
+        // derivative with respect to d (the Coulomb regime needs them, see `friction`).
+        let fric_of: Vec<Option<usize>> = match model.friction {
+            Some(_) if with_matrix => {
+                let mut f = vec![None; nn];
+                for (k, &n) in model.mesh.bottom.iter().enumerate() {
+                    if st.active[k] && map[n][0].is_some() {
+                        f[n] = Some(k);
+                    }
+                }
+                f
+            }
+            _ => Vec::new(),
+        };
+        let n_fric = if fric_of.is_empty() {
+            0
+        } else {
+            model.mesh.bottom.len()
+        };
+        let mut fric_rows: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n_fric];
+        let mut fric_dd = vec![0.0; n_fric];
+        if with_matrix {
+            self.sys.clear();
+            self.friction_rows.clear();
+            self.tangent_assemblies += 1;
+        }
+        for e in 0..model.mesh.quads.len() {
+            let q = model.mesh.quads[e];
+            let (en, g, hess) = match model.kin {
+                Kinematics::Finite if !with_matrix => {
+                    let (en, g) = element::gradient(&model.refs[e], &model.mat, &model.elem_x(st, e))?;
+                    (en, g, [[0.0; 8]; 8])
+                }
+                Kinematics::Finite => {
+                    let t = element::tangent(&model.refs[e], &model.mat, &model.elem_x(st, e))?;
+                    (t.energy, t.grad, t.hess)
+                }
+                Kinematics::Linear => {
+                    let (en, g) = model.linear_elem(st, e);
+                    (en, g, model.k_lin[e])
+                }
+            };
+            energy += en;
+            force_scale = g.iter().fold(force_scale, |m, v| m.max(v.abs()));
+            for a in 0..4 {
+                grad[2 * q[a]] += g[2 * a];
+                grad[2 * q[a] + 1] += g[2 * a + 1];
+            }
+            if with_matrix {
+                for b in 0..4 {
+                    if model.role[q[b]] != Role::Top {
+                        continue;
+                    }
+                    for a in 0..4 {
+                        for s in 0..2 {
+                            if let Some(ca) = map[q[a]][s] {
+                                dresid_dd[2 * q[a] + s] -= ca[0] * hess[2 * a][2 * b + 1]
+                                    + ca[1] * hess[2 * a + 1][2 * b + 1];
+                            }
+                        }
+                    }
+                }
+                let pos = &self.sys.elem_pos[e];
+                for a in 0..4 {
+                    for s in 0..2 {
+                        let Some(ca) = map[q[a]][s] else { continue };
+                        // row vector caᵀ H[a, ·]
+                        let mut row = [0.0; 8];
+                        for (col, rv) in row.iter_mut().enumerate() {
+                            *rv = ca[0] * hess[2 * a][col] + ca[1] * hess[2 * a + 1][col];
+                        }
+                        for b in 0..4 {
+                            for t in 0..2 {
+                                let Some(cb) = map[q[b]][t] else { continue };
+                                let v = row[2 * b] * cb[0] + row[2 * b + 1] * cb[1];
+                                self.sys.values[pos[8 * (2 * a + s) + 2 * b + t]] += v;
+                            }
+                        }
+                    }
+                    if let Some(k) = fric_of.get(q[a]).copied().flatten() {
+                        let sl = model.contact_slope(st, q[a]);
+                        for b in 0..4 {
+                            let nrow = |col: usize| -sl * hess[2 * a][col] + hess[2 * a + 1][col];
+                            if model.role[q[b]] == Role::Top {
+                                fric_dd[k] -= nrow(2 * b + 1);
+                            }
+                            for t in 0..2 {
+                                let Some(cb) = map[q[b]][t] else { continue };
+                                let v = nrow(2 * b) * cb[0] + nrow(2 * b + 1) * cb[1];
+                                fric_rows[k].push((2 * q[b] + t, v));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let mut resid = vec![0.0; 2 * nn];
+        for n in 0..nn {
+            for s in 0..2 {
+                if let Some(c) = map[n][s] {
+                    resid[2 * n + s] = c[0] * grad[2 * n] + c[1] * grad[2 * n + 1];
+                }
+            }
+        }
+        if with_matrix {
+            for n in 0..nn {
+                for s in 0..2 {
+                    if map[n][s].is_none() {
+                        self.sys.values[self.sys.diag_pos[2 * n + s]] = 1.0;
+                    }
+                }
+            }
+            if model.kin == Kinematics::Finite {
+                for (k, &n) in model.mesh.bottom.iter().enumerate() {
+                    if st.active[k] && map[n][0].is_some() {
+                        self.sys.values[self.sys.diag_pos[2 * n]] +=
+                            grad[2 * n + 1] * model.indenter.curvature(st.x[n][0]);
+                    }
+                }
+            }
+        }
+        if let Some(law) = model.friction {
+            for (k, &n) in model.mesh.bottom.iter().enumerate() {
+                if !st.active[k] || map[n][0].is_none() {
+                    continue;
+                }
+                let f = model.friction_eval(st, k, &grad, &law);
+                resid[2 * n] += f.force;
+                if !with_matrix {
+                    continue;
+                }
+                // the friction row of the tangent (formulas in `friction`) under either
+                // regime, kept for the semismooth step (`friction_rows`); the assembled
+                // regime's row goes in: its own entry into the symmetric values, the rest
+                // as a row update (see `linsys`), every friction row an update row so that
+                // a switch of the semismooth step changes updates only
+                let (own_phi, own_dphi) = f.coulomb_own(&law, [grad[2 * n], grad[2 * n + 1]]);
+                let mut coulomb_phi = vec![(2 * n, own_phi)];
+                coulomb_phi.extend(fric_rows[k].iter().map(|&(c, v)| (c, law.mu * v)));
+                let coulomb = RegimeRow {
+                    per_phi: coulomb_phi,
+                    w_limit: own_dphi,
+                    per_phi_dd: law.mu * fric_dd[k],
+                };
+                let cn = map[n][0].expect("sliding slot");
+                let (own_phi, own_dphi) = f.orowan_own(&law, cn);
+                let mut orowan_phi = vec![(2 * n, own_phi)];
+                for (side, m) in [k.wrapping_sub(1), k + 1].into_iter().enumerate() {
+                    let Some(&nm) = model.mesh.bottom.get(m) else {
+                        continue;
+                    };
+                    for t in 0..2 {
+                        let Some(cm) = map[nm][t] else { continue };
+                        orowan_phi.push((2 * nm + t, f.orowan_neighbour(&law, side, cm)));
+                    }
+                }
+                let orowan = RegimeRow {
+                    per_phi: orowan_phi,
+                    w_limit: own_dphi,
+                    per_phi_dd: 0.0,
+                };
+                let row = f.row(2 * n, coulomb, orowan);
+                let assembled = row.law_row(row.at, law.slip_c);
+                self.sys.values[self.sys.diag_pos[2 * n]] += assembled.own;
+                self.sys.add_to_row(2 * n, 2 * n, 0.0);
+                for (col, v) in assembled.others {
+                    self.sys.add_to_row(2 * n, col, v);
+                }
+                dresid_dd[2 * n] += assembled.force_dd;
+                self.friction_rows.push(row);
+            }
+        }
+        let forces = Forces {
+            energy,
+            grad,
+            resid,
+            dresid_dd,
+            force_scale,
+        };
+        self.cache = Some((st.clone(), forces.clone()));
+        Some(forces)
+    }
+
+    /// The work done so far: tangent assemblies and factorisations.
+    pub fn work(&self) -> super::SolveWork {
+        super::SolveWork {
+            tangent_assemblies: self.tangent_assemblies,
+            factorisations: self.sys.factorisations(),
+            woodbury_unit_solves: self.sys.woodbury_unit_solves(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fe::friction::Regime;
+    use crate::fe::{build_model, Interface, LayerProblem, MeshLevel, SolveOptions};
+
+    /// A pressed, sheared state of the coarse AR 0.3 model under friction coefficient `mu`
+    /// and stick regularisation `elastic_slip_over_element` (τ_max/E* = 0.1): the layer
+    /// moved down by 0.01 λ, the contact-face nodes that the indenter then pushes up in
+    /// contact, moved along it beyond their stick band.
+    fn sheared(mu: f64, elastic_slip_over_element: f64) -> (Model, State) {
+        let problem = LayerProblem {
+            aspect_ratio: 0.3,
+            thickness_over_lambda: 1.0,
+            kappa_over_g: 1000.0,
+            kinematics: Kinematics::Finite,
+            interface: Interface::coulomb_orowan(mu, 0.1, elastic_slip_over_element),
+        };
+        let opts = SolveOptions {
+            mesh: MeshLevel::Coarse,
+            ..Default::default()
+        };
+        let model = build_model(&problem, &opts);
+        let mut st = model.initial_state();
+        st.d = 0.01;
+        for p in st.x.iter_mut() {
+            p[1] -= st.d;
+        }
+        for k in 1..model.mesh.bottom.len() {
+            let n = model.mesh.bottom[k];
+            if model.indenter.y(st.x[n][0]) < -0.8 * st.d {
+                break;
+            }
+            model.activate(&mut st, k);
+            st.x[n][0] += 1e-4 * k as f64;
+        }
+        model.enforce_constraints(&mut st);
+        (model, st)
+    }
+
+    /// Model `to`'s tangent row, residual and `∂r/∂d` on each friction node, against model
+    /// `from`'s switched to `to`'s piece of the law ([`FrictionRow::switched`], with `to`'s
+    /// elastic-slip limit) where `selected` picks the pair; returns how many were compared.
+    fn compare_switched(
+        from: &mut Model,
+        to: &mut Model,
+        st: &State,
+        selected: impl Fn(LawBranch, LawBranch) -> bool,
+    ) -> usize {
+        let ff = from.assemble(st, true).expect("not inverted");
+        let ft = to.assemble(st, true).expect("not inverted");
+        let slip_c = to.elastic_slip_limit().expect("friction");
+        let n = from.sys.size();
+        let mut compared = 0;
+        for (rf, rt) in from.friction_rows.iter().zip(&to.friction_rows) {
+            assert_eq!(rf.row, rt.row);
+            if !selected(rf.at, rt.at) {
+                continue;
+            }
+            compared += 1;
+            let (entries, d_resid, d_resid_dd) = rf.switched(rt.at, slip_c);
+            let scale = (0..n).fold(0.0_f64, |m, c| m.max(to.sys.get(rt.row, c).abs()));
+            for c in 0..n {
+                let extra: f64 = entries.iter().filter(|e| e.0 == c).map(|e| e.1).sum();
+                let switched = from.sys.get(rf.row, c) + extra;
+                let assembled = to.sys.get(rt.row, c);
+                assert!(
+                    (switched - assembled).abs() <= 1e-12 * scale,
+                    "row {}, column {c}: switched {switched} vs assembled {assembled}",
+                    rf.row
+                );
+            }
+            let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + a.abs().max(b.abs()));
+            assert!(close(ff.resid[rf.row] + d_resid, ft.resid[rt.row]));
+            assert!(close(
+                ff.dresid_dd[rf.row] + d_resid_dd,
+                ft.dresid_dd[rt.row]
+            ));
+        }
+        compared
+    }
+
+    /// The semismooth step's switches are exact. Regime: on every node that the Coulomb law
+    /// (μ = 10⁻⁴) puts in the Coulomb regime and the Orowan law (μ = 50, same τ_max) in the
+    /// Orowan regime, the Coulomb model's tangent row, residual and `∂r/∂d` switched to the
+    /// Orowan regime are the Orowan model's assembled ones (the Orowan row does not depend
+    /// on μ). Branch: a sliding node switched to stick with the limit `e_c` of a model whose
+    /// wide band (100 element lengths) holds it stuck has that model's row (the slip row does
+    /// not depend on `e_c`). The assembled tangents are checked against central differences
+    /// in `tests/fe_tangent.rs`.
+    #[test]
+    fn switched_rows_are_the_other_pieces_assembled_rows() {
+        let (mut coulomb, st) = sheared(1e-4, 0.005);
+        let (mut orowan, _) = sheared(50.0, 0.005);
+        let (mut stuck, _) = sheared(50.0, 100.0);
+        let regimes = compare_switched(&mut coulomb, &mut orowan, &st, |a, b| {
+            a.regime == Regime::Coulomb && b.regime == Regime::Orowan && a.slip == b.slip
+        });
+        assert!(regimes >= 3, "only {regimes} nodes in both regimes");
+        let branches = compare_switched(&mut orowan, &mut stuck, &st, |a, b| {
+            a.regime == b.regime && a.slip != Branch::Stick && b.slip == Branch::Stick
+        });
+        assert!(
+            branches >= 3,
+            "only {branches} nodes switched from slip to stick"
+        );
+    }
+}

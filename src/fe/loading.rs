@@ -1,0 +1,214 @@
+//! The loading branch: slab-displacement stepping from one contact-edge event to the next
+//! ([`super::event_search`]), from first contact to the target contact width or mean
+//! pressure.
+//!
+//! Predictor: the tangent (Euler) step from the last converged state to the slab
+//! displacement at which the target node closes along that tangent, scaled by the previous
+//! event's ratio of actual to extrapolated increment. Nodes left touching with a vanishing
+//! force at the last event enter the next step active.
+
+use super::active_set::equilibrate;
+use super::assembly::Assembly;
+use super::error::{CurveFailure, SolveError};
+use super::event_search::{activate_touching, closing_increment, event_gap_tolerance, next_target, EventSearch};
+use super::measure::{deformed_state, measure};
+use super::model::{Model, State};
+use super::predictor::tangent_at;
+use super::pressure_target::{land_on_pressure, PRESSURE_TARGET_RTOL};
+use super::{Curve, CurvePoint, SolveOptions};
+
+/// Bounds of the ratio of actual to tangent-extrapolated displacement increment that scales the
+/// next event's first trial. Safeguard, not tuned: one odd event (a node released and
+/// re-touching) cannot throw the next prediction far off.
+const EVENT_RATIO_MIN: f64 = 0.5;
+
+/// Upper bound of the event ratio ([`EVENT_RATIO_MIN`]).
+const EVENT_RATIO_MAX: f64 = 4.0;
+
+/// What the load stepping carries from one edge event to the next.
+pub(crate) struct LoadPath {
+    /// Converged state of the last event, and of the one before.
+    pub(crate) cur: State,
+    pub(crate) prev: Option<State>,
+    /// Contact half-width `a/λ` of the last event.
+    pub(crate) a: f64,
+    /// Slab-displacement increment of the last event (units of λ; before the first, the
+    /// first trial).
+    pub(crate) last_increment: f64,
+    /// Ratio of the actual to the tangent-extrapolated increment of the last event.
+    pub(crate) event_ratio: f64,
+    /// Points converged so far.
+    pub(crate) points: Vec<CurvePoint>,
+    /// Internal forces `∂Π/∂x` of `cur`.
+    pub(crate) grad: Vec<f64>,
+}
+
+impl LoadPath {
+    /// The undeformed state with the peak node in contact.
+    pub(crate) fn start(model: &Model, opts: &SolveOptions) -> Self {
+        Self {
+            cur: model.initial_state(),
+            prev: None,
+            a: 0.0,
+            last_increment: opts.first_step_over_amplitude * model.indenter.amplitude,
+            event_ratio: 1.0,
+            points: Vec::new(),
+            grad: vec![0.0; 2 * model.num_nodes()],
+        }
+    }
+
+    /// Move on to the converged event `st` with its point and forces; `extrapolated` is
+    /// the increment the load tangent predicted for it.
+    pub(crate) fn advance(&mut self, st: State, point: CurvePoint, grad: Vec<f64>, extrapolated: Option<f64>) {
+        self.a = point.a_over_lambda;
+        self.points.push(point);
+        self.grad = grad;
+        self.last_increment = st.d - self.cur.d;
+        if let Some(e) = extrapolated {
+            self.event_ratio = (self.last_increment / e).clamp(EVENT_RATIO_MIN, EVENT_RATIO_MAX);
+        }
+        self.prev = Some(std::mem::replace(&mut self.cur, st));
+    }
+
+    /// The failure `error` with the points converged so far.
+    pub(crate) fn fail(self, error: SolveError) -> Box<CurveFailure> {
+        Box::new(CurveFailure {
+            error,
+            points: self.points,
+            unloading: Vec::new(),
+        })
+    }
+
+    /// The curve: the loading points, `unloading`, the last converged state and the work
+    /// done (`asm`).
+    pub(crate) fn finish(
+        self,
+        model: &Model,
+        asm: &Assembly,
+        estar: f64,
+        unloading: Vec<CurvePoint>,
+    ) -> Curve {
+        Curve {
+            final_state: deformed_state(model, &self.cur, &self.grad, estar),
+            points: self.points,
+            unloading,
+            work: asm.work(),
+        }
+    }
+}
+
+/// Trace the load curve up to `opts.until_a_over_lambda`, one edge event per point (see
+/// [`super::event_search`] for the events, [`super::edge_rule`] for the contact-edge
+/// location).
+pub(crate) fn trace(
+    model: &Model,
+    asm: &mut Assembly,
+    opts: &SolveOptions,
+    estar: f64,
+    on_step: &mut dyn FnMut(&CurvePoint),
+) -> Result<Curve, Box<CurveFailure>> {
+    let path = loading_branch(model, asm, opts, estar, on_step)?;
+    Ok(path.finish(model, asm, estar, Vec::new()))
+}
+
+/// The loading branch: from first contact, one edge event per point, until the contact
+/// half-width reaches `opts.until_a_over_lambda` (or, with `opts.until_p_over_estar`, until
+/// the mean pressure reaches that: the event that would overshoot it is replaced by the
+/// state on the target, [`land_on_pressure`]).
+pub(crate) fn loading_branch(
+    model: &Model,
+    asm: &mut Assembly,
+    opts: &SolveOptions,
+    estar: f64,
+    on_step: &mut dyn FnMut(&CurvePoint),
+) -> Result<LoadPath, Box<CurveFailure>> {
+    let mut path = LoadPath::start(model, opts);
+    let mut step = 1;
+    // reached when loading landed on it (within its tolerance, so possibly a hair below)
+    let pressure_reached = |path: &LoadPath| match (opts.until_p_over_estar, path.points.last()) {
+        (Some(target), Some(p)) => p.p_over_estar >= target * (1.0 - PRESSURE_TARGET_RTOL),
+        _ => false,
+    };
+    while path.a < opts.until_a_over_lambda && !pressure_reached(&path) {
+        if step > opts.max_steps {
+            let error = SolveError::TooManySteps {
+                steps: opts.max_steps,
+                a_over_lambda: path.a,
+            };
+            return Err(path.fail(error));
+        }
+        // the next edge node; nodes skipped because they touch enter the step active
+        let Some(k) = next_target(model, &path.cur, path.a, opts.da_target) else {
+            break; // full contact
+        };
+        activate_touching(model, &mut path.cur, k);
+        // predict: the slab displacement at which node k closes along the load tangent, scaled by
+        // the previous event's ratio of actual to extrapolated increment
+        let gap0 = model.gaps(&path.cur)[k];
+        let tangent = tangent_at(model, asm, opts, &path.cur);
+        let extrapolated = tangent
+            .as_deref()
+            .and_then(|z| closing_increment(model, &path.cur, k, gap0, z));
+        let search = EventSearch {
+            opts,
+            from: &path.cur,
+            before: path.prev.as_ref(),
+            node: k,
+            gap0,
+            gap_tol: event_gap_tolerance(model, opts, gap0),
+            tangent,
+            first_increment: extrapolated.map_or(path.last_increment, |e| e * path.event_ratio),
+            last_increment: path.last_increment,
+        };
+        // the event: node k touches with zero force
+        let (mut st, mut iters) = match search.find(model, asm, step) {
+            Ok(found) => found,
+            Err(error) => return Err(path.fail(error)),
+        };
+        // node k enters contact; equilibrate, commit the slip and measure
+        model.activate(&mut st, k);
+        model.enforce_constraints(&mut st);
+        match equilibrate(model, asm, &mut st, opts, None) {
+            Ok(it) => iters += it,
+            Err(f) => return Err(path.fail(f.into_error(step, st.d))),
+        }
+        model.commit_slip(&mut st);
+        let (mut point, grad) = measure(model, asm, &st, estar, k, opts.edge_rule);
+        point.newton_iterations = iters;
+        if let Some(target) = opts.until_p_over_estar.filter(|&t| point.p_over_estar > t) {
+            // the event overshoots the pressure target: land on it between the last
+            // converged state and this event instead
+            let event = (st.d, point.p_over_estar);
+            match land_on_pressure(model, asm, opts, estar, &path, k, event, target) {
+                Ok((st, mut point, grad, it)) => {
+                    point.newton_iterations = iters + it;
+                    on_step(&point);
+                    path.advance(st, point, grad, None);
+                    break;
+                }
+                Err(f) => return Err(path.fail(f.into_error(step, event.0))),
+            }
+        }
+        on_step(&point);
+        path.advance(st, point, grad, extrapolated);
+        step += 1;
+    }
+    if let Some(target) = opts.until_p_over_estar {
+        if !pressure_reached(&path) && path.a >= opts.until_a_over_lambda {
+            let error = SolveError::PressureTargetBeyondLimit {
+                a_over_lambda: path.a,
+                p_over_estar: path.points.last().map_or(0.0, |p| p.p_over_estar),
+                target,
+            };
+            return Err(path.fail(error));
+        }
+    }
+    if path.a < opts.until_a_over_lambda && !pressure_reached(&path) {
+        let error = SolveError::TargetBeyondMesh {
+            a_over_lambda: path.a,
+            target: opts.until_a_over_lambda,
+        };
+        return Err(path.fail(error));
+    }
+    Ok(path)
+}

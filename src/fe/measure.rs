@@ -1,0 +1,88 @@
+//! What a converged state is worth on the curve: its point (contact half-width, mean
+//! pressure from the contact forces and from the slab reaction, slab displacement) and its
+//! deformed state with the contact tractions.
+
+use super::assembly::Assembly;
+use super::edge_rule::{edge_position, loaded_edge_node};
+use super::model::{Model, State};
+use super::{CurvePoint, DeformedState, EdgeRule, SolveOptions};
+
+/// The modelled width, half a wavelength (units of λ): the mean pressure is a force over it.
+const HALF_WAVELENGTH: f64 = 0.5;
+
+/// `p̄/E*` from the contact tractions: the vertical components of the contact forces, which
+/// at equilibrium are the internal forces `∂Π/∂y` of the active nodes, over half a wavelength.
+pub(crate) fn mean_pressure_over_estar(model: &Model, st: &State, grad: &[f64], estar: f64) -> f64 {
+    model.multipliers(st, grad).iter().sum::<f64>() / HALF_WAVELENGTH / estar
+}
+
+/// The point of a converged state whose edge node is `edge` (the node an edge event brought
+/// onto the indenter; the edge lies in the element before it, [`edge_position`]), and its
+/// internal forces `∂Π/∂x`.
+pub(crate) fn measure(
+    model: &Model,
+    asm: &mut Assembly,
+    st: &State,
+    estar: f64,
+    edge: usize,
+    rule: EdgeRule,
+) -> (CurvePoint, Vec<f64>) {
+    let f = asm
+        .assemble(model, st, false)
+        .expect("converged state is not inverted");
+    let p_tr = mean_pressure_over_estar(model, st, &f.grad, estar);
+    let p_re = model.slab_reaction(&f.grad) / HALF_WAVELENGTH / estar;
+    (
+        CurvePoint {
+            a_over_lambda: edge_position(model, st, edge, rule),
+            p_over_estar: p_tr,
+            p_over_estar_reaction: p_re,
+            slab_displacement_over_lambda: st.d,
+            newton_iterations: 0,
+            active_nodes: st.active.iter().filter(|&&b| b).count(),
+        },
+        f.grad,
+    )
+}
+
+/// [`measure`] for a converged state that is not an edge event: the edge in the last loaded
+/// element ([`loaded_edge_node`]).
+pub(crate) fn measure_between_events(
+    model: &Model,
+    asm: &mut Assembly,
+    st: &State,
+    estar: f64,
+    opts: &SolveOptions,
+) -> (CurvePoint, Vec<f64>) {
+    let f = asm
+        .assemble(model, st, false)
+        .expect("converged state is not inverted");
+    let edge = loaded_edge_node(model, st, &f.grad, opts.multiplier_rtol);
+    measure(model, asm, st, estar, edge, opts.edge_rule)
+}
+
+/// The deformed state and its contact tractions: normal and tangential nodal contact
+/// forces ([`Model::normal_forces`], [`Model::tangential_forces`]) over each node's
+/// tributary length on the deformed face.
+pub(crate) fn deformed_state(model: &Model, st: &State, grad: &[f64], estar: f64) -> DeformedState {
+    let normal = model.normal_forces(st, grad);
+    let tangential = model.tangential_forces(st, grad);
+    let b = &model.mesh.bottom;
+    let n = b.len();
+    let pos = |k: usize| st.x[b[k]];
+    let seg = |k: usize| {
+        let (p, q) = (pos(k), pos(k + 1));
+        ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)).sqrt()
+    };
+    let trib = |k: usize| {
+        0.5 * (if k > 0 { seg(k - 1) } else { 0.0 } + if k + 1 < n { seg(k) } else { 0.0 })
+    };
+    DeformedState {
+        nodes: st.x.clone(),
+        quads: model.mesh.quads.clone(),
+        bottom: b.clone(),
+        in_contact: st.active.clone(),
+        contact_pressure_over_estar: (0..n).map(|k| normal[k] / trib(k) / estar).collect(),
+        contact_shear_over_estar: (0..n).map(|k| tangential[k] / trib(k) / estar).collect(),
+    }
+}
