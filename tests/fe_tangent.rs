@@ -144,7 +144,8 @@ fn global_tangent_with_contact_elimination_matches_central_differences() {
             mesh: MeshLevel::Elements { nx: 5, ny: 3 },
             ..Default::default()
         };
-        let mut m = build_model(&pb, &opts);
+        let m = build_model(&pb, &opts);
+        let mut asm = assembly::Assembly::new(&m);
         let mut st = m.initial_state();
         st.d = 0.03;
         // deform smoothly, put the first three contact-face nodes on the indenter
@@ -157,10 +158,16 @@ fn global_tangent_with_contact_elimination_matches_central_differences() {
             st.active[k] = true;
         }
         m.enforce_constraints(&mut st);
-        let f = assert_tangent_matches_central_differences(&mut m, &st, 1e-6, &format!("{kin:?}"));
+        let f = assert_tangent_matches_central_differences(
+            &m,
+            &mut asm,
+            &st,
+            1e-6,
+            &format!("{kin:?}"),
+        );
         // the residual is the energy's gradient (frictionless: a minimisation)
         let (n, h) = (2 * m.num_nodes(), 1e-6);
-        for c in (0..n).filter(|&c| f.resid[c] != 0.0 || m.sys.get(c, c) != 1.0) {
+        for c in (0..n).filter(|&c| f.resid[c] != 0.0 || asm.sys.get(c, c) != 1.0) {
             let mut e = vec![0.0; n];
             e[c] = 1.0;
             let ep = m.energy(&m.updated(&st, &e, h)).unwrap();
@@ -179,21 +186,22 @@ fn global_tangent_with_contact_elimination_matches_central_differences() {
 /// differences of the reduced residual with step `h`; tolerance 1e-6 of the largest
 /// diagonal entry. Returns the forces at `st` (assembled with the matrix).
 fn assert_tangent_matches_central_differences(
-    m: &mut model::Model,
+    m: &model::Model,
+    asm: &mut assembly::Assembly,
     st: &model::State,
     h: f64,
     label: &str,
-) -> model::Forces {
-    let f = m.assemble(st, true).expect("valid state");
-    let k_at = m.sys.clone();
+) -> assembly::Forces {
+    let f = asm.assemble(m, st, true).expect("valid state");
+    let k_at = asm.sys.clone();
     let n = 2 * m.num_nodes();
     let kmax = (0..n).map(|i| k_at.get(i, i).abs()).fold(0.0, f64::max);
     let free = |r: usize| f.resid[r] != 0.0 || k_at.get(r, r) != 1.0;
     for c in (0..n).filter(|&c| free(c)) {
         let mut e = vec![0.0; n];
         e[c] = 1.0;
-        let fp = m.assemble(&m.updated(st, &e, h), false).unwrap();
-        let fm = m.assemble(&m.updated(st, &e, -h), false).unwrap();
+        let fp = asm.assemble(m, &m.updated(st, &e, h), false).unwrap();
+        let fm = asm.assemble(m, &m.updated(st, &e, -h), false).unwrap();
         for r in (0..n).filter(|&r| free(r)) {
             let fd = (fp.resid[r] - fm.resid[r]) / (2.0 * h);
             let k = k_at.get(r, c);
@@ -210,8 +218,8 @@ fn assert_tangent_matches_central_differences(
         s
     };
     let (sp, sm) = (shifted(h), shifted(-h));
-    let fp = m.assemble(&sp, false).unwrap();
-    let fm = m.assemble(&sm, false).unwrap();
+    let fp = asm.assemble(m, &sp, false).unwrap();
+    let fm = asm.assemble(m, &sm, false).unwrap();
     for r in 0..n {
         let fd = (fp.resid[r] - fm.resid[r]) / (2.0 * h);
         assert!(
@@ -247,8 +255,10 @@ fn friction_tangent_matches_central_differences() {
                 mesh: MeshLevel::Elements { nx: 5, ny: 3 },
                 ..Default::default()
             };
-            let mut m = build_model(&pb, &opts);
-            let mut m0 = build_model(&frictionless, &opts);
+            let m = build_model(&pb, &opts);
+            let m0 = build_model(&frictionless, &opts);
+            let mut asm = assembly::Assembly::new(&m);
+            let mut asm0 = assembly::Assembly::new(&m0);
             let mut st = m.initial_state();
             st.d = 0.06;
             // conform to the indenter and compress the layer (compressive contact forces)
@@ -271,8 +281,8 @@ fn friction_tangent_matches_central_differences() {
                 st.slip[k].elastic = 0.0;
                 st.slip[k].anchor_x = st.x[n][0] - offset;
             }
-            let f = m.assemble(&st, true).expect("valid state");
-            let f0 = m0.assemble(&st, false).expect("valid state");
+            let f = asm.assemble(&m, &st, true).expect("valid state");
+            let f0 = asm0.assemble(&m0, &st, false).expect("valid state");
             // every sliding node is pressed and in the intended regime
             let normal = m.normal_forces(&st, &f.grad);
             let limit = m.friction_thresholds(&st, &f.grad);
@@ -293,7 +303,8 @@ fn friction_tangent_matches_central_differences() {
                 );
             }
             assert_tangent_matches_central_differences(
-                &mut m,
+                &m,
+                &mut asm,
                 &st,
                 1e-7,
                 &format!("{kin:?} {name}"),

@@ -82,13 +82,13 @@ fn active_set_passes(
         // the normal force at equilibrium, and insensitive to the tangential residual left by
         // loose passes: testing N there costs more Newton iterations); the normal force N
         // with friction, where λ = (N + y_s' T)/w can differ in sign from N.
-        let lam = if model.is_potential() {
+        let release_force = if model.is_potential() {
             model.multipliers(st, &f.grad)
         } else {
             model.normal_forces(st, &f.grad)
         };
         let gaps = model.gaps(st);
-        let lam_scale = lam
+        let release_scale = release_force
             .iter()
             .fold(0.0_f64, |m, l| m.max(l.abs()))
             .max(MULTIPLIER_SCALE_FLOOR);
@@ -96,7 +96,7 @@ fn active_set_passes(
         let mut changed = false;
         for k in 0..st.active.len() {
             if st.active[k] {
-                if lam[k] < -opts.multiplier_rtol * lam_scale {
+                if release_force[k] < -opts.multiplier_rtol * release_scale {
                     st.active[k] = false;
                     changed = true;
                 }

@@ -125,10 +125,11 @@ impl Assembly {
         let mut energy = 0.0;
         let mut force_scale = 0.0_f64;
         let mut dresid_dd = vec![0.0; if with_matrix { 2 * nn } else { 0 }];
-        // Friction: active sliding nodes (contact-face index per node) and, per such node,
-        // the rows (−y_s', 1)ᵀ H[node, ·] mapped to slots (column, value) and their
-        // derivative with respect to d (the Coulomb regime needs them, see `friction`).
-        let fric_of: Vec<Option<usize>> = match model.friction {
+        // Friction: the contact-face index of each active sliding node and, per such node,
+        // its normal-force row (−y_s', 1)ᵀ H[node, ·] mapped to slots (column, value) and
+        // that row's derivative with respect to d (the Coulomb regime's threshold μN needs
+        // them, see `friction`).
+        let sliding_face_index: Vec<Option<usize>> = match model.friction {
             Some(_) if with_matrix => {
                 let mut f = vec![None; nn];
                 for (k, &n) in model.mesh.bottom.iter().enumerate() {
@@ -140,13 +141,13 @@ impl Assembly {
             }
             _ => Vec::new(),
         };
-        let n_fric = if fric_of.is_empty() {
+        let sliding_rows = if sliding_face_index.is_empty() {
             0
         } else {
             model.mesh.bottom.len()
         };
-        let mut fric_rows: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n_fric];
-        let mut fric_dd = vec![0.0; n_fric];
+        let mut normal_force_rows: Vec<Vec<(usize, f64)>> = vec![Vec::new(); sliding_rows];
+        let mut normal_force_dd = vec![0.0; sliding_rows];
         if with_matrix {
             self.sys.clear();
             self.friction_rows.clear();
@@ -156,7 +157,8 @@ impl Assembly {
             let q = model.mesh.quads[e];
             let (en, g, hess) = match model.kin {
                 Kinematics::Finite if !with_matrix => {
-                    let (en, g) = element::gradient(&model.refs[e], &model.mat, &model.elem_x(st, e))?;
+                    let (en, g) =
+                        element::gradient(&model.refs[e], &model.mat, &model.elem_x(st, e))?;
                     (en, g, [[0.0; 8]; 8])
                 }
                 Kinematics::Finite => {
@@ -205,17 +207,17 @@ impl Assembly {
                             }
                         }
                     }
-                    if let Some(k) = fric_of.get(q[a]).copied().flatten() {
+                    if let Some(k) = sliding_face_index.get(q[a]).copied().flatten() {
                         let sl = model.contact_slope(st, q[a]);
                         for b in 0..4 {
                             let nrow = |col: usize| -sl * hess[2 * a][col] + hess[2 * a + 1][col];
                             if model.role[q[b]] == Role::Top {
-                                fric_dd[k] -= nrow(2 * b + 1);
+                                normal_force_dd[k] -= nrow(2 * b + 1);
                             }
                             for t in 0..2 {
                                 let Some(cb) = map[q[b]][t] else { continue };
                                 let v = nrow(2 * b) * cb[0] + nrow(2 * b + 1) * cb[1];
-                                fric_rows[k].push((2 * q[b] + t, v));
+                                normal_force_rows[k].push((2 * q[b] + t, v));
                             }
                         }
                     }
@@ -264,11 +266,11 @@ impl Assembly {
                 // a switch of the semismooth step changes updates only
                 let (own_phi, own_dphi) = f.coulomb_own(&law, [grad[2 * n], grad[2 * n + 1]]);
                 let mut coulomb_phi = vec![(2 * n, own_phi)];
-                coulomb_phi.extend(fric_rows[k].iter().map(|&(c, v)| (c, law.mu * v)));
+                coulomb_phi.extend(normal_force_rows[k].iter().map(|&(c, v)| (c, law.mu * v)));
                 let coulomb = RegimeRow {
                     per_phi: coulomb_phi,
                     w_limit: own_dphi,
-                    per_phi_dd: law.mu * fric_dd[k],
+                    per_phi_dd: law.mu * normal_force_dd[k],
                 };
                 let cn = map[n][0].expect("sliding slot");
                 let (own_phi, own_dphi) = f.orowan_own(&law, cn);
@@ -322,14 +324,14 @@ impl Assembly {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fe::friction::Regime;
+    use crate::fe::friction::{Branch, LawPiece, Regime};
     use crate::fe::{build_model, Interface, LayerProblem, MeshLevel, SolveOptions};
 
     /// A pressed, sheared state of the coarse AR 0.3 model under friction coefficient `mu`
     /// and stick regularisation `elastic_slip_over_element` (τ_max/E* = 0.1): the layer
     /// moved down by 0.01 λ, the contact-face nodes that the indenter then pushes up in
     /// contact, moved along it beyond their stick band.
-    fn sheared(mu: f64, elastic_slip_over_element: f64) -> (Model, State) {
+    fn sheared(mu: f64, elastic_slip_over_element: f64) -> (Model, Assembly, State) {
         let problem = LayerProblem {
             aspect_ratio: 0.3,
             thickness_over_lambda: 1.0,
@@ -356,21 +358,24 @@ mod tests {
             st.x[n][0] += 1e-4 * k as f64;
         }
         model.enforce_constraints(&mut st);
-        (model, st)
+        let asm = Assembly::new(&model);
+        (model, asm, st)
     }
 
     /// Model `to`'s tangent row, residual and `∂r/∂d` on each friction node, against model
     /// `from`'s switched to `to`'s piece of the law ([`FrictionRow::switched`], with `to`'s
     /// elastic-slip limit) where `selected` picks the pair; returns how many were compared.
     fn compare_switched(
-        from: &mut Model,
-        to: &mut Model,
+        from: &mut (Model, Assembly, State),
+        to: &mut (Model, Assembly, State),
         st: &State,
-        selected: impl Fn(LawBranch, LawBranch) -> bool,
+        selected: impl Fn(LawPiece, LawPiece) -> bool,
     ) -> usize {
-        let ff = from.assemble(st, true).expect("not inverted");
-        let ft = to.assemble(st, true).expect("not inverted");
-        let slip_c = to.elastic_slip_limit().expect("friction");
+        let (from_model, from, _) = from;
+        let (to_model, to, _) = to;
+        let ff = from.assemble(from_model, st, true).expect("not inverted");
+        let ft = to.assemble(to_model, st, true).expect("not inverted");
+        let slip_c = to_model.elastic_slip_limit().expect("friction");
         let n = from.sys.size();
         let mut compared = 0;
         for (rf, rt) in from.friction_rows.iter().zip(&to.friction_rows) {
@@ -411,9 +416,10 @@ mod tests {
     /// in `tests/fe_tangent.rs`.
     #[test]
     fn switched_rows_are_the_other_pieces_assembled_rows() {
-        let (mut coulomb, st) = sheared(1e-4, 0.005);
-        let (mut orowan, _) = sheared(50.0, 0.005);
-        let (mut stuck, _) = sheared(50.0, 100.0);
+        let mut coulomb = sheared(1e-4, 0.005);
+        let mut orowan = sheared(50.0, 0.005);
+        let mut stuck = sheared(50.0, 100.0);
+        let st = coulomb.2.clone();
         let regimes = compare_switched(&mut coulomb, &mut orowan, &st, |a, b| {
             a.regime == Regime::Coulomb && b.regime == Regime::Orowan && a.slip == b.slip
         });

@@ -152,7 +152,7 @@ impl EventSearch<'_> {
     pub(crate) fn find(
         &self,
         model: &Model,
-    asm: &mut Assembly,
+        asm: &mut Assembly,
         step: usize,
     ) -> Result<(State, usize), SolveError> {
         let bordered = if !self.opts.bordered_edge_solve {
@@ -193,7 +193,7 @@ impl EventSearch<'_> {
     fn held_free(
         &self,
         model: &Model,
-    asm: &mut Assembly,
+        asm: &mut Assembly,
         base: &State,
         base_prev: Option<&State>,
         tangent: Option<&[f64]>,
@@ -216,7 +216,7 @@ impl EventSearch<'_> {
     fn bordered(
         &self,
         model: &Model,
-    asm: &mut Assembly,
+        asm: &mut Assembly,
         base: &State,
         base_prev: Option<&State>,
         tangent: Option<&[f64]>,
@@ -327,7 +327,12 @@ impl EventSearch<'_> {
                     trial = search
                         .next(SECANT_FRACTION_MIN, SECANT_FRACTION_MAX)
                         .unwrap_or_else(|| {
-                            extrapolated(&search, self.from.d, self.last_increment, opts.max_step_growth)
+                            extrapolated(
+                                &search,
+                                self.from.d,
+                                self.last_increment,
+                                opts.max_step_growth,
+                            )
                         });
                 }
             }

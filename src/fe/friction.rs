@@ -280,8 +280,8 @@ impl Branch {
     /// `|e*| = e_c` belong to the slip branches (`φ` is continuous there, the tangent is the
     /// one-sided one of continued slip): a node committed while sliding sits there
     /// (`e_{n+1} = ±e_c`), and its load tangent and first Newton step then see it slide on
-    /// instead of holding it on the stiff stick spring. Measured: 7026 against 7586 tangent
-    /// assemblies over the 18 Fig. 3 curves (AR 0.3, τ_max 0.01 MPa: 472 against 672).
+    /// instead of holding it on the stiff stick spring (fewer tangent assemblies:
+    /// docs/performance.md, solver choices).
     pub(super) fn of(trial_slip: f64, slip_c: f64) -> Self {
         if trial_slip.abs() < slip_c {
             Branch::Stick
@@ -342,7 +342,7 @@ pub(super) struct LawRow {
 /// Where on the friction law a node lies: the threshold's regime and the return mapping's
 /// branch.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) struct LawBranch {
+pub(super) struct LawPiece {
     /// `Open` (`N ≤ 0`, no friction), `Coulomb` or `Orowan`.
     pub regime: Regime,
     /// Stick, or slip either way.
@@ -362,7 +362,7 @@ pub(super) struct FrictionRow {
     /// `w = √(1 + y_s'²)`.
     pub w: f64,
     /// The piece of the law the state lies on.
-    pub at: LawBranch,
+    pub at: LawPiece,
     /// The row under the Coulomb regime, `L = μ N`.
     pub coulomb: RegimeRow,
     /// The row under the Orowan regime, `L = τ_max ℓ`.
@@ -387,12 +387,12 @@ impl FrictionRow {
     /// puts on stick), the affine `φ = e*/e_c` is far above 1 (60 at AR 0.3 near the edge),
     /// and `φ δ(w L)` would tie the node's row to 60 times its threshold's sensitivity (60 μ
     /// times the normal force's row in the Coulomb regime), though wherever the step lands
-    /// on that branch `|φ| ≤ 1`: the Newton step was then several element lengths long and
-    /// cut to 2⁻¹⁰. The factor of `δ(w L)` is therefore `φ` clamped to `[−1, 1]`, the value
-    /// it has at any landing point on the branch; the force and `δφ` keep the affine law.
-    /// Inside the band (every assembled row) nothing changes. Measured: 7586 against 8061
-    /// tangent assemblies over the 18 Fig. 3 curves, every p̄/E* within 1.5·10⁻⁹.
-    pub(super) fn law_row(&self, on: LawBranch, slip_c: f64) -> LawRow {
+    /// on that branch `|φ| ≤ 1`: with the affine factor the Newton step is several element
+    /// lengths long and the line search cuts it to a small fraction. The factor of `δ(w L)`
+    /// is therefore `φ` clamped to `[−1, 1]`, the value it has at any landing point on the
+    /// branch; the force and `δφ` keep the affine law. Inside the band (every assembled row)
+    /// nothing changes (docs/performance.md, solver choices).
+    pub(super) fn law_row(&self, on: LawPiece, slip_c: f64) -> LawRow {
         let Some(r) = self.regime_row(on.regime) else {
             return LawRow::default();
         };
@@ -411,8 +411,8 @@ impl FrictionRow {
     /// `w L` of the Coulomb and Orowan regimes (the rule of [`FrictionLaw::eval`]). An open
     /// node (`N ≤ 0`, released by the active-set loop after the solve) stays open, and a
     /// node stays in its regime where the step would open it: switching into and out of
-    /// the open regime too made the choice cost more iterations (measured: 5092 against
-    /// 4710 tangent assemblies over eight frictional curves at AR 0.1–0.3).
+    /// the open regime too made the choice cost more iterations (docs/performance.md, solver
+    /// choices).
     pub(super) fn regime_after(&self, step: &[f64]) -> Regime {
         let coulomb = self.coulomb.w_limit_after(step);
         let orowan = self.orowan.w_limit_after(step);
@@ -426,7 +426,7 @@ impl FrictionRow {
 
     /// The change of the row's entries, of `r_x` and of `∂r_x/∂d` when piece `to` of the
     /// law replaces the assembled one: `(entries, Δr_x, Δ∂r_x/∂d)`.
-    pub(super) fn switched(&self, to: LawBranch, slip_c: f64) -> (Vec<(usize, f64)>, f64, f64) {
+    pub(super) fn switched(&self, to: LawPiece, slip_c: f64) -> (Vec<(usize, f64)>, f64, f64) {
         let (new, old) = (self.law_row(to, slip_c), self.law_row(self.at, slip_c));
         let mut entries = vec![(self.row, new.own - old.own)];
         entries.extend(new.others);
@@ -442,7 +442,7 @@ impl FrictionEval {
             row,
             trial_slip: self.trial_slip,
             w: self.w,
-            at: LawBranch {
+            at: LawPiece {
                 regime: self.regime,
                 slip: self.branch,
             },
@@ -561,7 +561,7 @@ mod tests {
             w_limit: 0.05 * scale,
             per_phi_dd: 0.7 * scale,
         };
-        let at = LawBranch {
+        let at = LawPiece {
             regime: Regime::Coulomb,
             slip: Branch::SlipForward,
         };
@@ -573,7 +573,7 @@ mod tests {
             coulomb: regime_row(1.0),
             orowan: regime_row(10.0),
         };
-        let stick = LawBranch {
+        let stick = LawPiece {
             slip: Branch::Stick,
             ..at
         };

@@ -27,7 +27,7 @@
 //! ([`super::friction::FrictionRow::regime_after`]); the switch in the predictor's load tangent.
 
 use super::assembly::Assembly;
-use super::friction::{Branch, LawBranch};
+use super::friction::{Branch, LawPiece};
 use super::linsys::{LinSolveError, RowChange};
 use super::model::Model;
 
@@ -54,7 +54,7 @@ pub(crate) fn solve_newton_step(
     };
     let rows = &asm.friction_rows;
     let with_load_column = rhs.len() > 1;
-    let mut assumed: Vec<LawBranch> = rows.iter().map(|r| r.at).collect();
+    let mut assumed: Vec<LawPiece> = rows.iter().map(|r| r.at).collect();
     let mut choices: Vec<BranchChoice> = rows
         .iter()
         .map(|r| BranchChoice::assembled(r.at.slip))
@@ -67,7 +67,7 @@ pub(crate) fn solve_newton_step(
             for (i, r) in rows.iter().enumerate() {
                 let slip = Branch::of(r.trial_slip + r.w * step[r.row], law.slip_c);
                 choices[i] = choices[i].after_step(r.at.slip, slip);
-                landed[i] = LawBranch {
+                landed[i] = LawPiece {
                     regime: r.regime_after(&step),
                     slip: choices[i].assumed,
                 };

@@ -10,7 +10,9 @@
 use super::active_set::equilibrate;
 use super::assembly::Assembly;
 use super::error::{CurveFailure, SolveError};
-use super::event_search::{activate_touching, closing_increment, event_gap_tolerance, next_target, EventSearch};
+use super::event_search::{
+    activate_touching, closing_increment, event_gap_tolerance, next_target, EventSearch,
+};
 use super::measure::{deformed_state, measure};
 use super::model::{Model, State};
 use super::predictor::tangent_at;
@@ -59,7 +61,13 @@ impl LoadPath {
 
     /// Move on to the converged event `st` with its point and forces; `extrapolated` is
     /// the increment the load tangent predicted for it.
-    pub(crate) fn advance(&mut self, st: State, point: CurvePoint, grad: Vec<f64>, extrapolated: Option<f64>) {
+    pub(crate) fn advance(
+        &mut self,
+        st: State,
+        point: CurvePoint,
+        grad: Vec<f64>,
+        extrapolated: Option<f64>,
+    ) {
         self.a = point.a_over_lambda;
         self.points.push(point);
         self.grad = grad;

@@ -80,10 +80,8 @@ pub struct IsoKinematics {
 /// comes from two Newton steps `y ← y (4 − J y³)/3` on `y⁻³ = J`, started at the
 /// second-order Taylor value `1 − e/3 + 2e²/9` (`e = J − 1`; relative error
 /// `≈ 14|e|³/81 ≤ 2.2·10⁻⁵` for `|e| ≤ 0.05`; a step maps an error `δ` to `≈ 2δ²`:
-/// `10⁻⁹`, then below round-off), and `J^(−2/3) = y²`. Elsewhere through the cube root.
-/// Measured: the software `cbrt` took 10 % of a curve's time; this chain of dependent
-/// operations, with three steps from the first-order value and a division by 3 in each,
-/// 8 %, and now 4 % (perf, AR 0.3, τ_max 0.2 MPa).
+/// `10⁻⁹`, then below round-off), and `J^(−2/3) = y²`. Elsewhere through the cube root,
+/// which is slower than these two steps (docs/performance.md, solver choices).
 #[inline]
 fn j_minus_two_thirds(j: f64) -> f64 {
     const THIRD: f64 = 1.0 / 3.0;

@@ -10,13 +10,11 @@
 //!   is `peak_ratio = 1 + 2β` times the spacing at the peak `X = 0`. Under the peak the
 //!   surface stretches strongly at large aspect ratio (≈ 3.7× at AR = 0.3, R10), so the
 //!   reference mesh is refined there to keep the current spacing near uniform. The
-//!   default ratio 4 makes the surface elements under the peak 2.5× taller than wide
-//!   in the reference configuration, so that they are not much flatter than square
-//!   when stretched. With ratio 2 (square elements there) the 32×16 mesh loses
-//!   stability under the peak at AR = 0.3, a/λ ≈ 0.30 (Newton stalls on an indefinite
-//!   tangent whose direction is the sliding node next to the peak); with 2.5 and 3 it
-//!   fails at a/λ ≈ 0.35 and 0.39; with 4 all three levels of the convergence study reach
-//!   a/λ = 0.45;
+//!   default ratio 4 makes the surface elements under the peak taller than wide in the
+//!   reference configuration, so that they are not much flatter than square when
+//!   stretched. With smaller ratios the coarse mesh loses stability under the peak at
+//!   AR = 0.3 before a/λ = 0.45 (Newton stalls on an indefinite tangent whose direction is
+//!   the sliding node next to the peak; docs/verification.md, mesh grading);
 //! * along `Y`: geometric layers whose first (bottom) layer is
 //!   `first_layer_over_dx × (½/nx)` thick, growing toward the bonded face.
 
@@ -24,11 +22,10 @@
 /// element counts of the previous one (the three levels of the convergence study).
 ///
 /// The default was chosen as the coarsest of these whose three-level Richardson estimate
-/// met the 0.5 % accuracy target of `p̄(a)` over a/λ ∈ [0.1, 0.45]. The finer measurement
-/// of the speed–accuracy scene (meshes 96 and 144, observed order 1.05–1.30) revises its
-/// error to 0.75–1.1 % at a/λ < 0.1 and at most 0.49 % above a/λ = 0.2 (README, "Speed
-/// and accuracy"); a user who needs less picks a finer mesh by tolerance. A 24 × 12 mesh
-/// does not reach a/λ = 0.45 at AR = 0.3 (Newton stalls near a/λ = 0.41).
+/// met the 0.5 % accuracy target of `p̄(a)` over a/λ ∈ [0.1, 0.45]. Its error as the
+/// speed–accuracy scene measures it is in `figures/speed_accuracy_bands.csv`
+/// (docs/results.md, speed and accuracy); a user who needs less picks a finer mesh by
+/// tolerance. The coarser 24 × 12 mesh does not reach a/λ = 0.45 at AR = 0.3.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum MeshLevel {
     /// 32 × 16 elements.

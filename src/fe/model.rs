@@ -70,7 +70,6 @@ pub struct State {
     pub slip: Vec<SlipHistory>,
 }
 
-
 /// The discrete model.
 #[derive(Clone, Debug)]
 pub struct Model {
@@ -93,7 +92,6 @@ pub struct Model {
     /// Boundary role of each node.
     pub(super) role: Vec<Role>,
 }
-
 
 pub(super) type SlotMap = Vec<[Option<[f64; 2]>; 2]>;
 
@@ -342,7 +340,13 @@ impl Model {
     }
 
     /// Friction force of active contact-face node `k` ([`FrictionLaw::eval`]).
-    pub(super) fn friction_eval(&self, st: &State, k: usize, grad: &[f64], law: &FrictionLaw) -> FrictionEval {
+    pub(super) fn friction_eval(
+        &self,
+        st: &State,
+        k: usize,
+        grad: &[f64],
+        law: &FrictionLaw,
+    ) -> FrictionEval {
         let b = &self.mesh.bottom;
         let n = b[k];
         let curvature = match self.kin {

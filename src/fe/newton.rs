@@ -348,7 +348,9 @@ pub(crate) fn newton_bordered(
             let dq: Vec<f64> = z1.iter().zip(z2).map(|(a, b)| a + b * dd).collect();
             (dd, dq)
         };
-        solve_newton_system(model, asm, opts, &mut rhs, it, |z| bordered_step(&z[0], &z[1]).1)?;
+        solve_newton_system(model, asm, opts, &mut rhs, it, |z| {
+            bordered_step(&z[0], &z[1]).1
+        })?;
         let (z1, z2) = (&rhs[0], &rhs[1]);
         let den = rate(z2);
         if den.abs() < INSENSITIVE_GAP_RATE {

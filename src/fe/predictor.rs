@@ -9,8 +9,7 @@ use super::SolveOptions;
 
 /// `∂q/∂d` at a converged state: `K ∂q/∂d = −∂r/∂d` (the tangent is positive definite
 /// there); `None` if the state is inverted or the solve fails.
-pub(crate) fn load_tangent(model: &Model,
-    asm: &mut Assembly, st: &State) -> Option<Vec<f64>> {
+pub(crate) fn load_tangent(model: &Model, asm: &mut Assembly, st: &State) -> Option<Vec<f64>> {
     let f = asm.assemble(model, st, true)?;
     let mut rhs = [f.dresid_dd.iter().map(|v| -v).collect::<Vec<f64>>()];
     asm.sys.solve_multi(&mut rhs).ok()?;
@@ -20,8 +19,12 @@ pub(crate) fn load_tangent(model: &Model,
 
 /// The load tangent of `st` for the predictor if [`SolveOptions::tangent_predictor`] is on
 /// ([`load_tangent`]).
-pub(crate) fn tangent_at(model: &Model,
-    asm: &mut Assembly, opts: &SolveOptions, st: &State) -> Option<Vec<f64>> {
+pub(crate) fn tangent_at(
+    model: &Model,
+    asm: &mut Assembly,
+    opts: &SolveOptions,
+    st: &State,
+) -> Option<Vec<f64>> {
     opts.tangent_predictor
         .then(|| load_tangent(model, asm, st))
         .flatten()

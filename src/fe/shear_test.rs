@@ -15,13 +15,13 @@
 //! checks that. The same model, solver and friction code as the wavy problem are used:
 //! only the indenter (amplitude 0) and the lateral faces ([`Lateral::Free`]) differ.
 
+use super::active_set::equilibrate;
+use super::assembly::Assembly;
 use super::contact::Indenter;
 use super::friction::{CoulombOrowan, Interface};
 use super::material::{estar_over_g, NeoHooke};
 use super::mesh::{Grading, Mesh};
 use super::model::{Lateral, Model};
-use super::active_set::equilibrate;
-use super::assembly::Assembly;
 use super::{Kinematics, SolveError, SolveOptions};
 
 /// The press-then-shear test.
@@ -126,11 +126,13 @@ pub fn press_and_shear(test: &ShearTest) -> Result<Vec<ShearPoint>, SolveError> 
         if step <= n_press {
             continue;
         }
-        let f = asm.assemble(&model, &st, false).ok_or(SolveError::Inverted {
-            step,
-            iteration: 0,
-            residual: f64::NAN,
-        })?;
+        let f = asm
+            .assemble(&model, &st, false)
+            .ok_or(SolveError::Inverted {
+                step,
+                iteration: 0,
+                residual: f64::NAN,
+            })?;
         let b = &model.mesh.bottom;
         let normal: f64 = model.normal_forces(&st, &f.grad).iter().sum();
         let threshold: f64 = model.friction_thresholds(&st, &f.grad).iter().sum();
