@@ -9,8 +9,9 @@
 //! target node onto the indenter.
 
 use super::assembly::Assembly;
+use super::error::StepFail;
 use super::model::{Model, State};
-use super::newton::{newton, newton_bordered, StepFail};
+use super::newton::{newton, newton_bordered};
 use super::SolveOptions;
 
 /// Floor of the multiplier scale `max|λ|` of the release test

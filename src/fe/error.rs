@@ -134,3 +134,56 @@ pub struct CurveFailure {
     /// while loading, or when no unloading was asked for).
     pub unloading: Vec<super::CurvePoint>,
 }
+
+/// Why one attempt at a load step failed.
+#[derive(Debug, Clone)]
+pub(crate) enum StepFail {
+    Diverged {
+        iteration: usize,
+        residual: f64,
+        reason: String,
+    },
+    Inverted {
+        iteration: usize,
+        residual: f64,
+    },
+    Cycling {
+        iterations: usize,
+    },
+    Linear {
+        iteration: usize,
+        message: String,
+    },
+}
+
+impl StepFail {
+    pub(crate) fn into_error(self, step: usize, d: f64) -> SolveError {
+        match self {
+            StepFail::Diverged {
+                iteration,
+                residual,
+                reason,
+            } => SolveError::NewtonDiverged {
+                step,
+                iteration,
+                residual,
+                slab_displacement_over_lambda: d,
+                reason,
+            },
+            StepFail::Inverted {
+                iteration,
+                residual,
+            } => SolveError::Inverted {
+                step,
+                iteration,
+                residual,
+            },
+            StepFail::Cycling { iterations } => SolveError::ActiveSetCycling { step, iterations },
+            StepFail::Linear { iteration, message } => SolveError::LinearSolve {
+                step,
+                iteration,
+                message,
+            },
+        }
+    }
+}

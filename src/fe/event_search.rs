@@ -13,8 +13,8 @@
 use super::active_set::{equilibrate, equilibrate_event};
 use super::assembly::Assembly;
 use super::error::SolveError;
+use super::error::StepFail;
 use super::model::{Model, State};
-use super::newton::StepFail;
 use super::predictor::{predictor, tangent_at};
 use super::step_control::{RegulaFalsi, StepCuts, Trial, STEP_CUT_FACTOR};
 use super::SolveOptions;

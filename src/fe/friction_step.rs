@@ -27,30 +27,38 @@
 //! ([`super::friction::FrictionRow::regime_after`]); the switch in the predictor's load tangent.
 
 use super::assembly::Assembly;
+use super::error::StepFail;
 use super::friction::{Branch, LawPiece};
 use super::linsys::{LinSolveError, RowChange};
 use super::model::Model;
+use super::SolveOptions;
 
 /// Most changed solves per Newton step in the semismooth choice of the friction branches.
 /// The choice settles in one or two changes where it settles; a cap, not tuned: beyond it
 /// the assembled step is taken.
 const MAX_BRANCH_SWITCHES: usize = 8;
 
-/// Solve the Newton system of the last assembled tangent (`asm`), `rhs[0] = −r` and, if
-/// present, `rhs[1] = −∂r/∂d`; `direction` maps the solutions to the step `δq` (for the
-/// bordered solve, a combination of the two). With friction and `semismooth`, the pieces of
-/// the friction law are chosen by where the step lands (module documentation); otherwise
-/// the assembled tangent is solved as it is.
+/// Solve the Newton system of iteration `iteration` on the last assembled tangent (`asm`),
+/// `rhs[0] = −r` and, if present, `rhs[1] = −∂r/∂d`; `direction` maps the solutions to the
+/// step `δq` (for the bordered solve, a combination of the two). With friction and
+/// [`SolveOptions::semismooth_friction`], the pieces of the friction law are chosen by where
+/// the step lands (module documentation); otherwise the assembled tangent is solved as it
+/// is. A failed solve ends the Newton solve ([`StepFail::Linear`]).
 pub(crate) fn solve_newton_step(
     model: &Model,
     asm: &mut Assembly,
+    opts: &SolveOptions,
     rhs: &mut [Vec<f64>],
-    semismooth: bool,
+    iteration: usize,
     direction: impl Fn(&[Vec<f64>]) -> Vec<f64>,
-) -> Result<(), LinSolveError> {
+) -> Result<(), StepFail> {
+    let failed = |e: LinSolveError| StepFail::Linear {
+        iteration,
+        message: e.to_string(),
+    };
     let law = match model.friction {
-        Some(law) if semismooth => law,
-        _ => return asm.sys.solve_multi(rhs),
+        Some(law) if opts.semismooth_friction => law,
+        _ => return asm.sys.solve_multi(rhs).map_err(failed),
     };
     let rows = &asm.friction_rows;
     let with_load_column = rhs.len() > 1;
@@ -95,7 +103,7 @@ pub(crate) fn solve_newton_step(
                 .collect();
             Some(changes)
         });
-    switching.map(|_| ())
+    switching.map(|_| ()).map_err(failed)
 }
 
 /// One node's return-mapping branch in the semismooth choice of a Newton step.

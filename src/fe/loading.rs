@@ -16,7 +16,7 @@ use super::event_search::{
 use super::measure::{deformed_state, measure};
 use super::model::{Model, State};
 use super::predictor::tangent_at;
-use super::pressure_target::{land_on_pressure, PRESSURE_TARGET_RTOL};
+use super::pressure_target::{land_on_pressure, Overshoot, PRESSURE_TARGET_RTOL};
 use super::{Curve, CurvePoint, SolveOptions};
 
 /// Bounds of the ratio of actual to tangent-extrapolated displacement increment that scales the
@@ -187,7 +187,13 @@ pub(crate) fn loading_branch(
             // the event overshoots the pressure target: land on it between the last
             // converged state and this event instead
             let event = (st.d, point.p_over_estar);
-            match land_on_pressure(model, asm, opts, estar, &path, k, event, target) {
+            let overshoot = Overshoot {
+                below: &path.cur,
+                below_p_over_estar: path.points.last().map_or(0.0, |p| p.p_over_estar),
+                node: k,
+                event,
+            };
+            match land_on_pressure(model, asm, opts, estar, overshoot, target) {
                 Ok((st, mut point, grad, it)) => {
                     point.newton_iterations = iters + it;
                     on_step(&point);

@@ -11,7 +11,7 @@
 //! `increment_atol` (round-off of the positions) also ends the iteration.
 
 use super::assembly::{Assembly, Forces};
-use super::error::SolveError;
+use super::error::StepFail;
 use super::friction_step::solve_newton_step;
 use super::model::{Model, State};
 use super::{Kinematics, SolveOptions};
@@ -31,77 +31,6 @@ const ENERGY_ROUNDOFF_SLACK: f64 = 1e-13;
 /// Step-length factor per backtracking step (halving: [`SolveOptions::max_line_search`]
 /// and [`SolveOptions::max_edge_line_search`] count halvings).
 const LINE_SEARCH_BACKTRACK: f64 = 0.5;
-
-/// Why one attempt at a load step failed.
-#[derive(Debug, Clone)]
-pub(crate) enum StepFail {
-    Diverged {
-        iteration: usize,
-        residual: f64,
-        reason: String,
-    },
-    Inverted {
-        iteration: usize,
-        residual: f64,
-    },
-    Cycling {
-        iterations: usize,
-    },
-    Linear {
-        iteration: usize,
-        message: String,
-    },
-}
-
-impl StepFail {
-    pub(crate) fn into_error(self, step: usize, d: f64) -> SolveError {
-        match self {
-            StepFail::Diverged {
-                iteration,
-                residual,
-                reason,
-            } => SolveError::NewtonDiverged {
-                step,
-                iteration,
-                residual,
-                slab_displacement_over_lambda: d,
-                reason,
-            },
-            StepFail::Inverted {
-                iteration,
-                residual,
-            } => SolveError::Inverted {
-                step,
-                iteration,
-                residual,
-            },
-            StepFail::Cycling { iterations } => SolveError::ActiveSetCycling { step, iterations },
-            StepFail::Linear { iteration, message } => SolveError::LinearSolve {
-                step,
-                iteration,
-                message,
-            },
-        }
-    }
-}
-
-/// The linear solve ([`solve_newton_step`]) of a Newton system at iteration `iteration`,
-/// `direction` mapping its solutions to the step; a failure ends the Newton solve.
-pub(crate) fn solve_newton_system(
-    model: &Model,
-    asm: &mut Assembly,
-    opts: &SolveOptions,
-    rhs: &mut [Vec<f64>],
-    iteration: usize,
-    direction: impl Fn(&[Vec<f64>]) -> Vec<f64>,
-) -> Result<(), StepFail> {
-    solve_newton_step(model, asm, rhs, opts.semismooth_friction, direction).map_err(|e| {
-        StepFail::Linear {
-            iteration,
-            message: e.to_string(),
-        }
-    })
-}
 
 /// Residual bound of Newton convergence, `rtol · f_e + residual_atol · (G + κ)`, with
 /// `force_scale = f_e` the largest element-level nodal force.
@@ -214,7 +143,7 @@ pub(crate) fn newton(
             .assemble(model, st, true)
             .expect("state assembled above is not inverted");
         let mut rhs = vec![f.resid.iter().map(|r| -r).collect::<Vec<f64>>()];
-        solve_newton_system(model, asm, opts, &mut rhs, it, |x| x[0].clone())?;
+        solve_newton_step(model, asm, opts, &mut rhs, it, |x| x[0].clone())?;
         let dq = rhs.pop().expect("one right-hand side");
         if inf_norm(&dq) <= opts.increment_atol {
             // correction below the round-off of the positions: converged
@@ -348,7 +277,7 @@ pub(crate) fn newton_bordered(
             let dq: Vec<f64> = z1.iter().zip(z2).map(|(a, b)| a + b * dd).collect();
             (dd, dq)
         };
-        solve_newton_system(model, asm, opts, &mut rhs, it, |z| {
+        solve_newton_step(model, asm, opts, &mut rhs, it, |z| {
             bordered_step(&z[0], &z[1]).1
         })?;
         let (z1, z2) = (&rhs[0], &rhs[1]);

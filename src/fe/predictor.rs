@@ -3,8 +3,8 @@
 
 use super::active_set::equilibrate;
 use super::assembly::Assembly;
+use super::error::StepFail;
 use super::model::{Model, State};
-use super::newton::StepFail;
 use super::SolveOptions;
 
 /// `∂q/∂d` at a converged state: `K ∂q/∂d = −∂r/∂d` (the tangent is positive definite

@@ -2,10 +2,9 @@
 //! converged state and the edge event that overshoots it.
 
 use super::assembly::Assembly;
-use super::loading::LoadPath;
+use super::error::StepFail;
 use super::measure::{mean_pressure_over_estar, measure_between_events};
 use super::model::{Model, State};
-use super::newton::StepFail;
 use super::predictor::displacement_step;
 use super::step_control::{RegulaFalsi, StepCuts, Trial};
 use super::{CurvePoint, SolveOptions};
@@ -19,8 +18,20 @@ pub(crate) const PRESSURE_TARGET_RTOL: f64 = 1e-9;
 /// `p̄(d)` converges in a handful; a safeguard).
 const MAX_PRESSURE_TRIALS: usize = 40;
 
-/// The state at which `p̄/E*` equals `target`, between the last converged state of `path`
-/// (below the target) and the edge event `(d, p̄/E*)` (above it): regula falsi on the slab
+/// An edge event that overshoots a pressure target, and the converged state before it.
+pub(crate) struct Overshoot<'a> {
+    /// The last converged state, below the target.
+    pub below: &'a State,
+    /// Its `p̄/E*`.
+    pub below_p_over_estar: f64,
+    /// The event's node: it touches only at the event, so below it the node stays free.
+    pub node: usize,
+    /// The event's slab displacement (units of λ) and `p̄/E*`, beyond the target.
+    pub event: (f64, f64),
+}
+
+/// The state at which `p̄/E*` equals `target`, between the state `below` the target and
+/// the edge event beyond it ([`Overshoot`]): regula falsi on the slab
 /// displacement (Illinois variant), each trial a displacement-controlled step with the
 /// friction history of the last converged state, equilibrated with its active set and the
 /// event's `node` kept free ([`displacement_step`]); a trial that fails is halved (at most
@@ -31,20 +42,23 @@ pub(crate) fn land_on_pressure(
     asm: &mut Assembly,
     opts: &SolveOptions,
     estar: f64,
-    path: &LoadPath,
-    node: usize,
-    event: (f64, f64),
+    overshoot: Overshoot<'_>,
     target: f64,
 ) -> Result<(State, CurvePoint, Vec<f64>, usize), StepFail> {
     // the residual of the regula falsi: how far a trial's p̄/E* lies below the target;
     // each trial starts from the converged trial nearest below the target (its friction
     // history is still the last converged state's: only the starting point moves)
-    let below_p = path.points.last().map_or(0.0, |p| p.p_over_estar);
+    let Overshoot {
+        below,
+        below_p_over_estar,
+        node,
+        event,
+    } = overshoot;
     let mut search = RegulaFalsi::new(
         Trial {
-            x: path.cur.d,
-            f: target - below_p,
-            at: path.cur.clone(),
+            x: below.d,
+            f: target - below_p_over_estar,
+            at: below.clone(),
         },
         None,
     );
