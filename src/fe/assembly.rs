@@ -14,10 +14,10 @@
 //! assembles is not changed by a solve.
 
 use super::element;
-use super::friction::{FrictionRow, RegimeRow};
+use super::friction::{FrictionEval, FrictionLaw, FrictionRow, RegimeRow};
 use super::linsys::SparseSystem;
 use super::mesh::Mesh;
-use super::model::{Model, Role, State};
+use super::model::{Model, Role, SlotMap, State};
 use super::Kinematics;
 
 /// Assembled energy and forces.
@@ -109,8 +109,8 @@ impl Assembly {
     }
 
     /// Assemble energy, gradient, reduced residual and (if `with_matrix`) the reduced
-    /// tangent into [`Assembly::sys`]. `None` if any element is inverted. With friction, `energy`
-    /// is the elastic energy only (the problem is no longer a minimisation).
+    /// tangent into [`Assembly::sys`]. `None` if any element is inverted. With friction,
+    /// `energy` is the elastic energy only (the problem is no longer a minimisation).
     pub fn assemble(&mut self, model: &Model, st: &State, with_matrix: bool) -> Option<Forces> {
         if !with_matrix {
             if let Some((c, f)) = &self.cache {
@@ -121,109 +121,19 @@ impl Assembly {
         }
         let nn = model.mesh.nodes.len();
         let map = model.slot_map(st);
-        let mut grad = vec![0.0; 2 * nn];
-        let mut energy = 0.0;
-        let mut force_scale = 0.0_f64;
-        let mut dresid_dd = vec![0.0; if with_matrix { 2 * nn } else { 0 }];
-        // Friction: the contact-face index of each active sliding node and, per such node,
-        // its normal-force row (−y_s', 1)ᵀ H[node, ·] mapped to slots (column, value) and
-        // that row's derivative with respect to d (the Coulomb regime's threshold μN needs
-        // them, see `friction`).
-        let sliding_face_index: Vec<Option<usize>> = match model.friction {
-            Some(_) if with_matrix => {
-                let mut f = vec![None; nn];
-                for (k, &n) in model.mesh.bottom.iter().enumerate() {
-                    if st.active[k] && map[n][0].is_some() {
-                        f[n] = Some(k);
-                    }
-                }
-                f
-            }
-            _ => Vec::new(),
-        };
-        let sliding_rows = if sliding_face_index.is_empty() {
-            0
-        } else {
-            model.mesh.bottom.len()
-        };
-        let mut normal_force_rows: Vec<Vec<(usize, f64)>> = vec![Vec::new(); sliding_rows];
-        let mut normal_force_dd = vec![0.0; sliding_rows];
         if with_matrix {
             self.sys.clear();
             self.friction_rows.clear();
             self.tangent_assemblies += 1;
         }
-        for e in 0..model.mesh.quads.len() {
-            let q = model.mesh.quads[e];
-            let (en, g, hess) = match model.kin {
-                Kinematics::Finite if !with_matrix => {
-                    let (en, g) =
-                        element::gradient(&model.refs[e], &model.mat, &model.elem_x(st, e))?;
-                    (en, g, [[0.0; 8]; 8])
-                }
-                Kinematics::Finite => {
-                    let t = element::tangent(&model.refs[e], &model.mat, &model.elem_x(st, e))?;
-                    (t.energy, t.grad, t.hess)
-                }
-                Kinematics::Linear => {
-                    let (en, g) = model.linear_elem(st, e);
-                    (en, g, model.k_lin[e])
-                }
-            };
-            energy += en;
-            force_scale = g.iter().fold(force_scale, |m, v| m.max(v.abs()));
-            for a in 0..4 {
-                grad[2 * q[a]] += g[2 * a];
-                grad[2 * q[a] + 1] += g[2 * a + 1];
-            }
-            if with_matrix {
-                for b in 0..4 {
-                    if model.role[q[b]] != Role::Top {
-                        continue;
-                    }
-                    for a in 0..4 {
-                        for s in 0..2 {
-                            if let Some(ca) = map[q[a]][s] {
-                                dresid_dd[2 * q[a] + s] -= ca[0] * hess[2 * a][2 * b + 1]
-                                    + ca[1] * hess[2 * a + 1][2 * b + 1];
-                            }
-                        }
-                    }
-                }
-                let pos = &self.sys.elem_pos[e];
-                for a in 0..4 {
-                    for s in 0..2 {
-                        let Some(ca) = map[q[a]][s] else { continue };
-                        // row vector caᵀ H[a, ·]
-                        let mut row = [0.0; 8];
-                        for (col, rv) in row.iter_mut().enumerate() {
-                            *rv = ca[0] * hess[2 * a][col] + ca[1] * hess[2 * a + 1][col];
-                        }
-                        for b in 0..4 {
-                            for t in 0..2 {
-                                let Some(cb) = map[q[b]][t] else { continue };
-                                let v = row[2 * b] * cb[0] + row[2 * b + 1] * cb[1];
-                                self.sys.values[pos[8 * (2 * a + s) + 2 * b + t]] += v;
-                            }
-                        }
-                    }
-                    if let Some(k) = sliding_face_index.get(q[a]).copied().flatten() {
-                        let sl = model.contact_slope(st, q[a]);
-                        for b in 0..4 {
-                            let nrow = |col: usize| -sl * hess[2 * a][col] + hess[2 * a + 1][col];
-                            if model.role[q[b]] == Role::Top {
-                                normal_force_dd[k] -= nrow(2 * b + 1);
-                            }
-                            for t in 0..2 {
-                                let Some(cb) = map[q[b]][t] else { continue };
-                                let v = nrow(2 * b) * cb[0] + nrow(2 * b + 1) * cb[1];
-                                normal_force_rows[k].push((2 * q[b] + t, v));
-                            }
-                        }
-                    }
-                }
-            }
-        }
+        let ElementSums {
+            energy,
+            grad,
+            force_scale,
+            mut dresid_dd,
+            normal_rows,
+            ..
+        } = self.add_elements(model, st, &map, with_matrix)?;
         let mut resid = vec![0.0; 2 * nn];
         for n in 0..nn {
             for s in 0..2 {
@@ -259,37 +169,12 @@ impl Assembly {
                 if !with_matrix {
                     continue;
                 }
-                // the friction row of the tangent (formulas in `friction`) under either
-                // regime, kept for the semismooth step (`friction_rows`); the assembled
-                // regime's row goes in: its own entry into the symmetric values, the rest
-                // as a row update (see `linsys`), every friction row an update row so that
-                // a switch of the semismooth step changes updates only
-                let (own_phi, own_dphi) = f.coulomb_own(&law, [grad[2 * n], grad[2 * n + 1]]);
-                let mut coulomb_phi = vec![(2 * n, own_phi)];
-                coulomb_phi.extend(normal_force_rows[k].iter().map(|&(c, v)| (c, law.mu * v)));
-                let coulomb = RegimeRow {
-                    per_phi: coulomb_phi,
-                    w_limit: own_dphi,
-                    per_phi_dd: law.mu * normal_force_dd[k],
-                };
-                let cn = map[n][0].expect("sliding slot");
-                let (own_phi, own_dphi) = f.orowan_own(&law, cn);
-                let mut orowan_phi = vec![(2 * n, own_phi)];
-                for (side, m) in [k.wrapping_sub(1), k + 1].into_iter().enumerate() {
-                    let Some(&nm) = model.mesh.bottom.get(m) else {
-                        continue;
-                    };
-                    for t in 0..2 {
-                        let Some(cm) = map[nm][t] else { continue };
-                        orowan_phi.push((2 * nm + t, f.orowan_neighbour(&law, side, cm)));
-                    }
-                }
-                let orowan = RegimeRow {
-                    per_phi: orowan_phi,
-                    w_limit: own_dphi,
-                    per_phi_dd: 0.0,
-                };
-                let row = f.row(2 * n, coulomb, orowan);
+                // the friction row of the tangent under either regime, kept for the
+                // semismooth step (`friction_rows`); the assembled regime's row goes in: its
+                // own entry into the symmetric values, the rest as a row update (see
+                // `linsys`), every friction row an update row so that a switch of the
+                // semismooth step changes updates only
+                let row = friction_row(model, &law, &map, k, &f, &grad, &normal_rows[k]);
                 let assembled = row.law_row(row.at, law.slip_c);
                 self.sys.values[self.sys.diag_pos[2 * n]] += assembled.own;
                 self.sys.add_to_row(2 * n, 2 * n, 0.0);
@@ -311,6 +196,135 @@ impl Assembly {
         Some(forces)
     }
 
+    /// The element loop: energy, gradient and force scale of every element and, with the
+    /// matrix, its tangent scattered into [`Assembly::sys`] ([`Self::scatter_element`]).
+    /// `None` if an element is inverted.
+    fn add_elements(
+        &mut self,
+        model: &Model,
+        st: &State,
+        map: &SlotMap,
+        with_matrix: bool,
+    ) -> Option<ElementSums> {
+        let nn = model.mesh.nodes.len();
+        // the contact-face index of each active sliding node, whose normal-force row the
+        // Coulomb regime's threshold μN needs (see `friction`)
+        let sliding_face_index: Vec<Option<usize>> = match model.friction {
+            Some(_) if with_matrix => {
+                let mut f = vec![None; nn];
+                for (k, &n) in model.mesh.bottom.iter().enumerate() {
+                    if st.active[k] && map[n][0].is_some() {
+                        f[n] = Some(k);
+                    }
+                }
+                f
+            }
+            _ => Vec::new(),
+        };
+        let normal_rows = if sliding_face_index.is_empty() {
+            Vec::new()
+        } else {
+            vec![NormalForceRow::default(); model.mesh.bottom.len()]
+        };
+        let mut sums = ElementSums {
+            energy: 0.0,
+            grad: vec![0.0; 2 * nn],
+            force_scale: 0.0,
+            dresid_dd: vec![0.0; if with_matrix { 2 * nn } else { 0 }],
+            sliding_face_index,
+            normal_rows,
+        };
+        for e in 0..model.mesh.quads.len() {
+            let q = model.mesh.quads[e];
+            let (en, g, hess) = match model.kin {
+                Kinematics::Finite if !with_matrix => {
+                    let (en, g) =
+                        element::gradient(&model.refs[e], &model.mat, &model.elem_x(st, e))?;
+                    (en, g, [[0.0; 8]; 8])
+                }
+                Kinematics::Finite => {
+                    let t = element::tangent(&model.refs[e], &model.mat, &model.elem_x(st, e))?;
+                    (t.energy, t.grad, t.hess)
+                }
+                Kinematics::Linear => {
+                    let (en, g) = model.linear_elem(st, e);
+                    (en, g, model.k_lin[e])
+                }
+            };
+            sums.energy += en;
+            sums.force_scale = g.iter().fold(sums.force_scale, |m, v| m.max(v.abs()));
+            for a in 0..4 {
+                sums.grad[2 * q[a]] += g[2 * a];
+                sums.grad[2 * q[a] + 1] += g[2 * a + 1];
+            }
+            if with_matrix {
+                self.scatter_element(model, st, map, e, &hess, &mut sums);
+            }
+        }
+        Some(sums)
+    }
+
+    /// Scatter the Hessian `hess` of element `e` into the reduced tangent `c_sᵀ H c_t`, its
+    /// bonded-face columns into `∂r/∂d`, and the normal-force rows of its active sliding
+    /// nodes into `sums`.
+    fn scatter_element(
+        &mut self,
+        model: &Model,
+        st: &State,
+        map: &SlotMap,
+        e: usize,
+        hess: &[[f64; 8]; 8],
+        sums: &mut ElementSums,
+    ) {
+        let q = model.mesh.quads[e];
+        for b in 0..4 {
+            if model.role[q[b]] != Role::Top {
+                continue;
+            }
+            for a in 0..4 {
+                for s in 0..2 {
+                    if let Some(ca) = map[q[a]][s] {
+                        sums.dresid_dd[2 * q[a] + s] -=
+                            ca[0] * hess[2 * a][2 * b + 1] + ca[1] * hess[2 * a + 1][2 * b + 1];
+                    }
+                }
+            }
+        }
+        let pos = &self.sys.elem_pos[e];
+        for a in 0..4 {
+            for s in 0..2 {
+                let Some(ca) = map[q[a]][s] else { continue };
+                // row vector caᵀ H[a, ·]
+                let mut row = [0.0; 8];
+                for (col, rv) in row.iter_mut().enumerate() {
+                    *rv = ca[0] * hess[2 * a][col] + ca[1] * hess[2 * a + 1][col];
+                }
+                for b in 0..4 {
+                    for t in 0..2 {
+                        let Some(cb) = map[q[b]][t] else { continue };
+                        let v = row[2 * b] * cb[0] + row[2 * b + 1] * cb[1];
+                        self.sys.values[pos[8 * (2 * a + s) + 2 * b + t]] += v;
+                    }
+                }
+            }
+            if let Some(k) = sums.sliding_face_index.get(q[a]).copied().flatten() {
+                let sl = model.contact_slope(st, q[a]);
+                let normal = &mut sums.normal_rows[k];
+                for b in 0..4 {
+                    let nrow = |col: usize| -sl * hess[2 * a][col] + hess[2 * a + 1][col];
+                    if model.role[q[b]] == Role::Top {
+                        normal.dd -= nrow(2 * b + 1);
+                    }
+                    for t in 0..2 {
+                        let Some(cb) = map[q[b]][t] else { continue };
+                        let v = nrow(2 * b) * cb[0] + nrow(2 * b + 1) * cb[1];
+                        normal.entries.push((2 * q[b] + t, v));
+                    }
+                }
+            }
+        }
+    }
+
     /// The work done so far: tangent assemblies and factorisations.
     pub fn work(&self) -> super::SolveWork {
         super::SolveWork {
@@ -319,6 +333,73 @@ impl Assembly {
             woodbury_unit_solves: self.sys.woodbury_unit_solves(),
         }
     }
+}
+
+/// What the element loop of one assembly accumulates.
+struct ElementSums {
+    /// Total elastic energy `Π`.
+    energy: f64,
+    /// `∂Π/∂x` (2 per node).
+    grad: Vec<f64>,
+    /// Largest element-level nodal force component.
+    force_scale: f64,
+    /// `∂r/∂d` of the reduced residual (with the matrix only).
+    dresid_dd: Vec<f64>,
+    /// The contact-face index of each node that is active and sliding (with friction and
+    /// the matrix only).
+    sliding_face_index: Vec<Option<usize>>,
+    /// Per contact-face node, its normal-force row (with friction and the matrix only).
+    normal_rows: Vec<NormalForceRow>,
+}
+
+/// The normal-force row `(−y_s', 1)ᵀ H[node, ·]` of an active sliding node mapped to slots
+/// (column, value), and its derivative with respect to the slab displacement `d`: the
+/// linearisation of the normal force `N` on which the Coulomb threshold `μ N` depends.
+#[derive(Clone, Debug, Default)]
+struct NormalForceRow {
+    entries: Vec<(usize, f64)>,
+    dd: f64,
+}
+
+/// The friction row of active sliding contact-face node `k` under either regime
+/// (formulas in [`super::friction`]): Coulomb from its normal-force row, Orowan from the
+/// positions of its face neighbours.
+fn friction_row(
+    model: &Model,
+    law: &FrictionLaw,
+    map: &SlotMap,
+    k: usize,
+    f: &FrictionEval,
+    grad: &[f64],
+    normal: &NormalForceRow,
+) -> FrictionRow {
+    let n = model.mesh.bottom[k];
+    let (own_phi, own_dphi) = f.coulomb_own(law, [grad[2 * n], grad[2 * n + 1]]);
+    let mut coulomb_phi = vec![(2 * n, own_phi)];
+    coulomb_phi.extend(normal.entries.iter().map(|&(c, v)| (c, law.mu * v)));
+    let coulomb = RegimeRow {
+        per_phi: coulomb_phi,
+        w_limit: own_dphi,
+        per_phi_dd: law.mu * normal.dd,
+    };
+    let cn = map[n][0].expect("sliding slot");
+    let (own_phi, own_dphi) = f.orowan_own(law, cn);
+    let mut orowan_phi = vec![(2 * n, own_phi)];
+    for (side, m) in [k.wrapping_sub(1), k + 1].into_iter().enumerate() {
+        let Some(&nm) = model.mesh.bottom.get(m) else {
+            continue;
+        };
+        for t in 0..2 {
+            let Some(cm) = map[nm][t] else { continue };
+            orowan_phi.push((2 * nm + t, f.orowan_neighbour(law, side, cm)));
+        }
+    }
+    let orowan = RegimeRow {
+        per_phi: orowan_phi,
+        w_limit: own_dphi,
+        per_phi_dd: 0.0,
+    };
+    f.row(2 * n, coulomb, orowan)
 }
 
 #[cfg(test)]
