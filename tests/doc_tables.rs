@@ -191,7 +191,11 @@ fn same_value(field: &str, want: &str) -> bool {
     }
 }
 
-fn select<'a>(csv: &Csv, rows: &[&'a Vec<String>], filter: &Filter) -> Result<Vec<&'a Vec<String>>, String> {
+fn select<'a>(
+    csv: &Csv,
+    rows: &[&'a Vec<String>],
+    filter: &Filter,
+) -> Result<Vec<&'a Vec<String>>, String> {
     let cols = filter
         .iter()
         .map(|(k, v)| Ok((csv.column(k)?, v.as_str())))
@@ -222,7 +226,10 @@ fn one_field(csv: &Csv, rows: &[&Vec<String>], reference: &str) -> Result<String
     let (col, filter) = parse_ref(reference)?;
     let picked = select(csv, rows, &filter)?;
     if picked.len() != 1 {
-        return Err(format!("`{reference}` selects {} CSV rows, not one", picked.len()));
+        return Err(format!(
+            "`{reference}` selects {} CSV rows, not one",
+            picked.len()
+        ));
     }
     Ok(picked[0][csv.column(&col)?].clone())
 }
@@ -246,25 +253,23 @@ fn evaluate(csv: &Csv, rows: &[&Vec<String>], expr: &str) -> Result<Option<Value
                     values.push(number(&r[i], expr)?);
                 }
             }
-            let folded = values.into_iter().reduce(|a, b| {
-                if take_max == (b > a) {
-                    b
-                } else {
-                    a
-                }
-            });
+            let folded = values
+                .into_iter()
+                .reduce(|a, b| if take_max == (b > a) { b } else { a });
             return Ok(folded.map(Value::Number));
         }
     }
     if let Some(inner) = expr.strip_prefix("rel(").and_then(|e| e.strip_suffix(')')) {
-        let (a, b) = inner
-            .split_once(';')
-            .ok_or(format!("`{expr}`: rel takes two references separated by `;`"))?;
+        let (a, b) = inner.split_once(';').ok_or(format!(
+            "`{expr}`: rel takes two references separated by `;`"
+        ))?;
         let (a, b) = (one_field(csv, rows, a)?, one_field(csv, rows, b)?);
         if a.is_empty() || b.is_empty() {
             return Ok(None);
         }
-        return Ok(Some(Value::Number(number(&a, expr)? / number(&b, expr)? - 1.0)));
+        return Ok(Some(Value::Number(
+            number(&a, expr)? / number(&b, expr)? - 1.0,
+        )));
     }
     let field = one_field(csv, rows, expr)?;
     Ok((!field.is_empty()).then_some(Value::Text(field)))
@@ -478,7 +483,9 @@ fn doc_tables_match_their_csvs() {
             };
             checked_csvs.insert(marker.csv.clone());
             if table.len() < 3 {
-                failures.push(format!("{at}: no table (header, separator, rows) below the marker"));
+                failures.push(format!(
+                    "{at}: no table (header, separator, rows) below the marker"
+                ));
                 continue;
             }
             let header = table_cells(&table[0]);
@@ -498,7 +505,10 @@ fn doc_tables_match_their_csvs() {
                 let rows = match parse_filter(filter).and_then(|f| select(&csv, &all, &f)) {
                     Ok(rows) if !rows.is_empty() => rows,
                     Ok(_) => {
-                        failures.push(format!("{at}, row {} (`{label}`): filter `{filter}` selects no CSV row", r + 1));
+                        failures.push(format!(
+                            "{at}, row {} (`{label}`): filter `{filter}` selects no CSV row",
+                            r + 1
+                        ));
                         continue;
                     }
                     Err(e) => {
@@ -534,14 +544,24 @@ fn doc_tables_match_their_csvs() {
         }
     }
     println!("{cells} cells checked against {} CSVs", checked_csvs.len());
-    assert!(failures.is_empty(), "{} mismatches:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} mismatches:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }
 
 #[test]
 fn readme_is_a_first_page() {
-    let bytes = fs::metadata(root().join("README.md")).expect("README.md").len() as usize;
+    let bytes = fs::metadata(root().join("README.md"))
+        .expect("README.md")
+        .len() as usize;
     println!("README.md: {bytes} bytes (at most {README_MAX_BYTES})");
-    assert!(bytes <= README_MAX_BYTES, "README.md is {bytes} bytes, more than {README_MAX_BYTES}");
+    assert!(
+        bytes <= README_MAX_BYTES,
+        "README.md is {bytes} bytes, more than {README_MAX_BYTES}"
+    );
 }
 
 /// Targets of `[text](target)` and `![alt](target)`, outside code spans and fenced blocks.
