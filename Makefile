@@ -9,7 +9,7 @@ export CARGO_TERM_COLOR ?= never
 all: reproduce
 
 ## Rebuild every figure (figures/*.svg) and the numbers behind it (figures/*.csv).
-## The first run compiles for about three minutes (cargo shows its progress).
+## The first run compiles first (cargo shows its progress); times in docs/performance.md.
 reproduce:
 	$(CARGO) build --release --locked
 	$(CARGO) run --release --locked --quiet -- reproduce
@@ -46,11 +46,11 @@ stale:
 	$(CARGO) run --release --locked --quiet -- reproduce
 	@bash .ci/stale-figures
 
-## The frictional-speed table (README, "Frictional speed"): per default-mesh curve the median wall time of 3 runs,
+## The frictional-speed table (docs/performance.md): per default-mesh curve the median wall time of 3 runs,
 ## DOFs, load steps, Newton iterations, factorisations; frictional/frictionless ratio per AR; the Fig. 3 sweep from
-## an empty cache on all cores; the cost growth from mesh 16 to 192 with its exponent and peak memory (about 20
-## minutes: 8 to mesh 128, then the mesh-192 curves, 2 and 9 minutes; BENCH_MAX_MESH=128 stops earlier). Then the criterion medians
-## of the model laws.
+## an empty cache on all cores; the cost growth from mesh 16 to 192 with its exponent and peak memory
+## (BENCH_MAX_MESH=128 leaves out the slow mesh-192 curves; its duration: docs/performance.md). Then the criterion
+## medians of the model laws.
 BENCH_MAX_MESH ?= 192
 bench:
 	$(CARGO) build --release --locked
@@ -58,14 +58,14 @@ bench:
 	$(CARGO) bench --locked --bench models
 	$(CARGO) run --release --locked --quiet --example bench_medians
 
-## Criterion medians of whole solver curves per mesh level (about 15 minutes).
+## Criterion medians of whole solver curves per mesh level (duration: docs/performance.md).
 bench-solver:
 	$(CARGO) bench --locked --bench solver
 	$(CARGO) run --release --locked --quiet --example bench_medians
 
 ## Wall time of every tier of experiments/speed_accuracy.toml (one thread, median of 3 runs), written
 ## to experiments/data/speed_accuracy_timings.csv, the cost axis of figures/speed_accuracy.svg
-## (about 8 minutes; run it on an otherwise idle machine, then `make reproduce` and commit both).
+## (duration: docs/performance.md; run it on an otherwise idle machine, then `make reproduce` and commit both).
 bench-tiers:
 	$(CARGO) build --release --locked
 	$(CARGO) run --release --locked --quiet -- time-tiers

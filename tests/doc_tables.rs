@@ -1,0 +1,625 @@
+//! The docs cannot drift from the CSVs they restate, the README stays a first page, and no
+//! relative link is dead.
+//!
+//! Reads README.md, CONTRIBUTING.md and docs/*.md, and the CSVs their tables name; nothing outside
+//! the repository.
+//!
+//! # Marking a table that restates a CSV
+//!
+//! An HTML comment directly above the table (blank lines between are allowed) names the CSV and
+//! says how each checked cell is computed from it:
+//!
+//! ```text
+//! <!-- from figures/fig3_fe_vs_model_mse.csv
+//! rows: tau_max_mpa=0 | tau_max_mpa=0.01
+//! col 1: {tau_max_mpa:v}
+//! col 2: {mse_wnl[aspect_ratio=0.1]:e1} / {mse_westergaard[aspect_ratio=0.1]:e1}
+//! -->
+//! | τ_max (MPa) | AR = 0.1 |
+//! |---|---|
+//! | 0 | 1.1e-5 / 1.8e-5 |
+//! | 0.01 | 4.2e-6 / 3.6e-5 |
+//! ```
+//!
+//! - `from PATH`: the CSV, relative to the repository root. Lines starting with `#` before its
+//!   header are skipped; fields may be quoted.
+//! - `rows: F | F | …`: one filter per body row of the table, in order (several `rows:` lines are
+//!   joined). A filter is `column=value,column=value` (values compared as numbers when both parse,
+//!   else as text; `column=` matches an empty field) or `*` (every CSV row).
+//! - `col N: TEMPLATE`: the text of column N (1-based) in every body row. Columns without a `col`
+//!   line are not checked (labels that are not in the CSV). A template is literal text with
+//!   placeholders `{EXPR:FORMAT}` or `{EXPR:FORMAT|TEXT}` (TEXT when the field is empty).
+//! - `EXPR` is evaluated on the CSV rows that pass the row's filter:
+//!   - `column` or `column[filter]`: the one row left after the extra filter (more or fewer than
+//!     one is an error in the marker);
+//!   - `min(column[filter])`, `max(column[filter])`: over every row left, empty fields skipped;
+//!   - `rel(A; B)`: A / B − 1, A and B as above.
+//! - `FORMAT` is an optional flag `z` (|x| < 1e-9 prints `0`, the unit kept), an optional flag `+`
+//!   (a sign on positive values too), then one kind:
+//!   - `v`: the CSV text unchanged;
+//!   - `eN`: scientific with N decimals, as Rust's `{:.Ne}` (`1.1e-5`);
+//!   - `fN`: N decimals;
+//!   - `sN`: N significant digits (digits left of the point are never rounded away), trailing
+//!     zeros kept;
+//!   - `pN`: ×100 with N significant digits, trailing zeros dropped, then ` %`;
+//!   - `pfN`: ×100 with N decimals, then ` %`;
+//!   - `tN`: a time in seconds, N significant digits, in µs below 1 ms, else in s.
+//!
+//!   Rounding is Rust's (the decimal nearest to the binary value). In the doc, `−` (U+2212)
+//!   reads as `-`, and runs of spaces as one.
+//!
+//! A failure names the doc, the table's line, the row, the column, the doc's text and the text
+//! the CSV gives.
+//!
+//! Also checked: README.md ≤ 10 240 bytes; every relative link `[…](path)` or `![…](path)` in
+//! README.md, CONTRIBUTING.md and docs/*.md points to a file or folder inside the repository; at
+//! least one marked table per CSV listed in `MUST_BE_CHECKED`.
+
+use std::collections::BTreeSet;
+use std::fs;
+use std::path::{Component, Path, PathBuf};
+
+const README_MAX_BYTES: usize = 10_240;
+
+/// CSVs restated by a doc table; each must be named by at least one marker (so that the test
+/// never passes because the markers were deleted).
+const MUST_BE_CHECKED: &[&str] = &[
+    "figures/fig3_fe_vs_model_mse.csv",
+    "figures/table1_refit.csv",
+    "figures/table1_refit_fit.csv",
+    "figures/fingertip_fe_errors.csv",
+    "figures/fig5_warman_ennos.csv",
+    "figures/hysteresis_dissipation.csv",
+    "figures/speed_accuracy.csv",
+    "figures/speed_accuracy_bands.csv",
+    "figures/speed_accuracy_reference.csv",
+];
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// README.md, CONTRIBUTING.md and docs/*.md, as paths relative to the root.
+fn doc_files() -> Vec<String> {
+    let mut docs = vec!["README.md".to_string(), "CONTRIBUTING.md".to_string()];
+    let mut in_docs: Vec<String> = fs::read_dir(root().join("docs"))
+        .expect("docs/ exists")
+        .map(|e| e.expect("readable docs/ entry").file_name())
+        .filter_map(|n| n.to_str().map(str::to_string))
+        .filter(|n| n.ends_with(".md"))
+        .map(|n| format!("docs/{n}"))
+        .collect();
+    in_docs.sort();
+    docs.extend(in_docs);
+    docs
+}
+
+fn read_doc(rel: &str) -> String {
+    fs::read_to_string(root().join(rel)).unwrap_or_else(|e| panic!("{rel}: {e}"))
+}
+
+/// A path named in a doc or marker, checked to stay inside the repository.
+fn inside_repo(base_dir: &Path, target: &str) -> Option<PathBuf> {
+    let mut parts: Vec<Component> = Vec::new();
+    if Path::new(target).is_absolute() {
+        return None;
+    }
+    let joined = base_dir.join(target);
+    for c in joined.components() {
+        match c {
+            Component::ParentDir => {
+                parts.pop()?;
+            }
+            Component::CurDir => {}
+            c => parts.push(c),
+        }
+    }
+    Some(parts.iter().collect())
+}
+
+// ---------------------------------------------------------------- CSV
+
+struct Csv {
+    header: Vec<String>,
+    rows: Vec<Vec<String>>,
+}
+
+fn parse_csv_line(line: &str) -> Vec<String> {
+    let mut fields = Vec::new();
+    let mut field = String::new();
+    let mut quoted = false;
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match (c, quoted) {
+            ('"', true) if chars.peek() == Some(&'"') => {
+                field.push('"');
+                chars.next();
+            }
+            ('"', _) => quoted = !quoted,
+            (',', false) => fields.push(std::mem::take(&mut field)),
+            (c, _) => field.push(c),
+        }
+    }
+    fields.push(field);
+    fields
+}
+
+fn read_csv(rel: &str) -> Result<Csv, String> {
+    let path = inside_repo(Path::new(""), rel).ok_or(format!("{rel}: outside the repository"))?;
+    let text = fs::read_to_string(root().join(path)).map_err(|e| format!("{rel}: {e}"))?;
+    let mut lines = text.lines().skip_while(|l| l.starts_with('#'));
+    let header = parse_csv_line(lines.next().ok_or(format!("{rel}: no header"))?);
+    let rows = lines
+        .filter(|l| !l.is_empty())
+        .map(parse_csv_line)
+        .collect();
+    Ok(Csv { header, rows })
+}
+
+impl Csv {
+    fn column(&self, name: &str) -> Result<usize, String> {
+        self.header
+            .iter()
+            .position(|h| h == name)
+            .ok_or(format!("no column `{name}`"))
+    }
+}
+
+// ---------------------------------------------------------------- filters and expressions
+
+type Filter = Vec<(String, String)>;
+
+fn parse_filter(text: &str) -> Result<Filter, String> {
+    let text = text.trim();
+    if text == "*" || text.is_empty() {
+        return Ok(Vec::new());
+    }
+    text.split(',')
+        .map(|kv| {
+            let (k, v) = kv
+                .split_once('=')
+                .ok_or(format!("filter `{kv}` is not column=value"))?;
+            Ok((k.trim().to_string(), v.trim().to_string()))
+        })
+        .collect()
+}
+
+fn same_value(field: &str, want: &str) -> bool {
+    match (field.parse::<f64>(), want.parse::<f64>()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => field == want,
+    }
+}
+
+fn select<'a>(
+    csv: &Csv,
+    rows: &[&'a Vec<String>],
+    filter: &Filter,
+) -> Result<Vec<&'a Vec<String>>, String> {
+    let cols = filter
+        .iter()
+        .map(|(k, v)| Ok((csv.column(k)?, v.as_str())))
+        .collect::<Result<Vec<_>, String>>()?;
+    Ok(rows
+        .iter()
+        .copied()
+        .filter(|r| cols.iter().all(|(i, v)| same_value(&r[*i], v)))
+        .collect())
+}
+
+/// `column` or `column[filter]`.
+fn parse_ref(text: &str) -> Result<(String, Filter), String> {
+    let text = text.trim();
+    match text.split_once('[') {
+        None => Ok((text.to_string(), Vec::new())),
+        Some((col, rest)) => {
+            let inner = rest
+                .strip_suffix(']')
+                .ok_or(format!("`{text}`: missing `]`"))?;
+            Ok((col.trim().to_string(), parse_filter(inner)?))
+        }
+    }
+}
+
+/// The field a reference names, in the one row it selects.
+fn one_field(csv: &Csv, rows: &[&Vec<String>], reference: &str) -> Result<String, String> {
+    let (col, filter) = parse_ref(reference)?;
+    let picked = select(csv, rows, &filter)?;
+    if picked.len() != 1 {
+        return Err(format!(
+            "`{reference}` selects {} CSV rows, not one",
+            picked.len()
+        ));
+    }
+    Ok(picked[0][csv.column(&col)?].clone())
+}
+
+fn number(field: &str, what: &str) -> Result<f64, String> {
+    field
+        .parse::<f64>()
+        .map_err(|_| format!("`{what}`: `{field}` is not a number"))
+}
+
+/// The value of an expression: `Ok(None)` when its field is empty.
+fn evaluate(csv: &Csv, rows: &[&Vec<String>], expr: &str) -> Result<Option<Value>, String> {
+    let expr = expr.trim();
+    for (name, take_max) in [("min(", false), ("max(", true)] {
+        if let Some(inner) = expr.strip_prefix(name).and_then(|e| e.strip_suffix(')')) {
+            let (col, filter) = parse_ref(inner)?;
+            let i = csv.column(&col)?;
+            let mut values = Vec::new();
+            for r in select(csv, rows, &filter)? {
+                if !r[i].is_empty() {
+                    values.push(number(&r[i], expr)?);
+                }
+            }
+            let folded = values
+                .into_iter()
+                .reduce(|a, b| if take_max == (b > a) { b } else { a });
+            return Ok(folded.map(Value::Number));
+        }
+    }
+    if let Some(inner) = expr.strip_prefix("rel(").and_then(|e| e.strip_suffix(')')) {
+        let (a, b) = inner.split_once(';').ok_or(format!(
+            "`{expr}`: rel takes two references separated by `;`"
+        ))?;
+        let (a, b) = (one_field(csv, rows, a)?, one_field(csv, rows, b)?);
+        if a.is_empty() || b.is_empty() {
+            return Ok(None);
+        }
+        return Ok(Some(Value::Number(
+            number(&a, expr)? / number(&b, expr)? - 1.0,
+        )));
+    }
+    let field = one_field(csv, rows, expr)?;
+    Ok((!field.is_empty()).then_some(Value::Text(field)))
+}
+
+enum Value {
+    Text(String),
+    Number(f64),
+}
+
+// ---------------------------------------------------------------- formats
+
+/// N significant digits, never rounding digits left of the point away.
+fn significant(x: f64, n: usize) -> String {
+    if x == 0.0 {
+        return "0".to_string();
+    }
+    let magnitude = x.abs().log10().floor() as i64;
+    let decimals = (n as i64 - 1 - magnitude).max(0) as usize;
+    format!("{x:.decimals$}")
+}
+
+fn trim_zeros(s: String) -> String {
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+fn format_value(value: Value, format: &str) -> Result<String, String> {
+    let mut spec = format.trim();
+    let zero_flag = spec.starts_with('z');
+    spec = spec.trim_start_matches('z');
+    let plus_flag = spec.starts_with('+');
+    spec = spec.trim_start_matches('+');
+    let x = match value {
+        Value::Text(t) if spec == "v" => return Ok(t),
+        Value::Text(t) => number(&t, format)?,
+        Value::Number(x) => x,
+    };
+    let digits = |prefix: &str| -> Result<usize, String> {
+        spec[prefix.len()..]
+            .parse::<usize>()
+            .map_err(|_| format!("format `{format}`: digits expected after `{prefix}`"))
+    };
+    let (body, unit) = if let Some(kind) = ["pf", "p", "e", "f", "s", "t"]
+        .into_iter()
+        .find(|k| spec.starts_with(k))
+    {
+        let n = digits(kind)?;
+        match kind {
+            "pf" => (format!("{:.n$}", x * 100.0), " %"),
+            "p" => (trim_zeros(significant(x * 100.0, n)), " %"),
+            "e" => (format!("{x:.n$e}"), ""),
+            "f" => (format!("{x:.n$}"), ""),
+            "s" => (significant(x, n), ""),
+            _ if x.abs() < 1e-3 => (significant(x * 1e6, n), " µs"),
+            _ => (significant(x, n), " s"),
+        }
+    } else if spec == "v" {
+        (x.to_string(), "")
+    } else {
+        return Err(format!("unknown format `{format}`"));
+    };
+    if zero_flag && x.abs() < 1e-9 {
+        return Ok(format!("0{unit}"));
+    }
+    let sign = if plus_flag && x > 0.0 { "+" } else { "" };
+    Ok(format!("{sign}{body}{unit}"))
+}
+
+/// A template with its placeholders filled from the rows of one table row.
+fn render(csv: &Csv, rows: &[&Vec<String>], template: &str) -> Result<String, String> {
+    let mut out = String::new();
+    let mut rest = template;
+    while let Some(open) = rest.find('{') {
+        out.push_str(&rest[..open]);
+        let close = rest[open..]
+            .find('}')
+            .ok_or(format!("`{template}`: unclosed `{{`"))?
+            + open;
+        let placeholder = &rest[open + 1..close];
+        let (body, fallback) = match placeholder.split_once('|') {
+            Some((b, f)) => (b, Some(f)),
+            None => (placeholder, None),
+        };
+        let (expr, format) = body
+            .rsplit_once(':')
+            .ok_or(format!("`{{{placeholder}}}`: no `:FORMAT`"))?;
+        match (evaluate(csv, rows, expr)?, fallback) {
+            (Some(v), _) => out.push_str(&format_value(v, format)?),
+            (None, Some(f)) => out.push_str(f),
+            (None, None) => return Err(format!("`{expr}` is empty and has no `|TEXT`")),
+        }
+        rest = &rest[close + 1..];
+    }
+    out.push_str(rest);
+    Ok(out)
+}
+
+fn normalise(cell: &str) -> String {
+    cell.replace('\u{2212}', "-")
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+// ---------------------------------------------------------------- markers and tables
+
+struct Marker {
+    csv: String,
+    rows: Vec<String>,
+    cols: Vec<(usize, String)>,
+}
+
+fn parse_marker(comment: &str) -> Result<Marker, String> {
+    let mut lines = comment.lines();
+    let csv = lines
+        .next()
+        .and_then(|l| l.trim().strip_prefix("from "))
+        .ok_or("first line is not `from PATH`")?
+        .trim()
+        .to_string();
+    let mut rows = Vec::new();
+    let mut cols = Vec::new();
+    for line in lines.map(str::trim).filter(|l| !l.is_empty()) {
+        if let Some(r) = line.strip_prefix("rows:") {
+            rows.extend(r.split('|').map(|f| f.trim().to_string()));
+        } else if let Some(c) = line.strip_prefix("col ") {
+            let (n, template) = c.split_once(':').ok_or(format!("`{line}`: no `:`"))?;
+            let n: usize = n
+                .trim()
+                .parse()
+                .map_err(|_| format!("`{line}`: column number expected"))?;
+            if n == 0 {
+                return Err(format!("`{line}`: columns count from 1"));
+            }
+            cols.push((n, template.trim().to_string()));
+        } else {
+            return Err(format!("`{line}`: expected `rows:` or `col N:`"));
+        }
+    }
+    if cols.is_empty() {
+        return Err("no `col N:` line".to_string());
+    }
+    Ok(Marker { csv, rows, cols })
+}
+
+fn table_cells(line: &str) -> Vec<String> {
+    let inner = line.trim().trim_start_matches('|');
+    let inner = inner.strip_suffix('|').unwrap_or(inner);
+    inner.split('|').map(|c| c.trim().to_string()).collect()
+}
+
+/// Every marked table of a doc: (1-based line of the marker, marker text, table lines).
+fn marked_tables(text: &str) -> Vec<(usize, String, Vec<String>)> {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut found = Vec::new();
+    let mut i = 0;
+    while i < lines.len() {
+        let Some(first) = lines[i].trim().strip_prefix("<!-- from ") else {
+            i += 1;
+            continue;
+        };
+        let start = i;
+        let mut comment = format!("from {first}");
+        while !comment.trim_end().ends_with("-->") && i + 1 < lines.len() {
+            i += 1;
+            comment.push('\n');
+            comment.push_str(lines[i]);
+        }
+        let comment = comment.trim_end().trim_end_matches("-->").to_string();
+        i += 1;
+        while i < lines.len() && lines[i].trim().is_empty() {
+            i += 1;
+        }
+        let mut table = Vec::new();
+        while i < lines.len() && lines[i].trim_start().starts_with('|') {
+            table.push(lines[i].to_string());
+            i += 1;
+        }
+        found.push((start + 1, comment, table));
+    }
+    found
+}
+
+#[test]
+fn doc_tables_match_their_csvs() {
+    let mut failures = Vec::new();
+    let mut checked_csvs = BTreeSet::new();
+    let mut cells = 0usize;
+    for doc in doc_files() {
+        let text = read_doc(&doc);
+        for (line, comment, table) in marked_tables(&text) {
+            let at = format!("{doc}, table at line {line}");
+            let marker = match parse_marker(&comment) {
+                Ok(m) => m,
+                Err(e) => {
+                    failures.push(format!("{at}: marker: {e}"));
+                    continue;
+                }
+            };
+            let at = format!("{at} (from {})", marker.csv);
+            let csv = match read_csv(&marker.csv) {
+                Ok(c) => c,
+                Err(e) => {
+                    failures.push(format!("{at}: {e}"));
+                    continue;
+                }
+            };
+            checked_csvs.insert(marker.csv.clone());
+            if table.len() < 3 {
+                failures.push(format!(
+                    "{at}: no table (header, separator, rows) below the marker"
+                ));
+                continue;
+            }
+            let header = table_cells(&table[0]);
+            let body = &table[2..];
+            if body.len() != marker.rows.len() {
+                failures.push(format!(
+                    "{at}: {} body rows but {} row filters",
+                    body.len(),
+                    marker.rows.len()
+                ));
+                continue;
+            }
+            let all: Vec<&Vec<String>> = csv.rows.iter().collect();
+            for (r, (row_line, filter)) in body.iter().zip(&marker.rows).enumerate() {
+                let doc_cells = table_cells(row_line);
+                let label = doc_cells.first().cloned().unwrap_or_default();
+                let rows = match parse_filter(filter).and_then(|f| select(&csv, &all, &f)) {
+                    Ok(rows) if !rows.is_empty() => rows,
+                    Ok(_) => {
+                        failures.push(format!(
+                            "{at}, row {} (`{label}`): filter `{filter}` selects no CSV row",
+                            r + 1
+                        ));
+                        continue;
+                    }
+                    Err(e) => {
+                        failures.push(format!("{at}, row {} (`{label}`): {e}", r + 1));
+                        continue;
+                    }
+                };
+                for (c, template) in &marker.cols {
+                    let column = header.get(c - 1).cloned().unwrap_or_default();
+                    let place = format!("{at}, row {} (`{label}`), column {c} (`{column}`)", r + 1);
+                    let want = match render(&csv, &rows, template) {
+                        Ok(w) => normalise(&w),
+                        Err(e) => {
+                            failures.push(format!("{place}: {e}"));
+                            continue;
+                        }
+                    };
+                    let have = doc_cells.get(c - 1).map(|s| normalise(s));
+                    cells += 1;
+                    if have.as_deref() != Some(want.as_str()) {
+                        failures.push(format!(
+                            "{place}: the doc has `{}`, the CSV gives `{want}`",
+                            have.unwrap_or_else(|| "(no cell)".to_string())
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    for csv in MUST_BE_CHECKED {
+        if !checked_csvs.contains(*csv) {
+            failures.push(format!("no doc table is marked `from {csv}`"));
+        }
+    }
+    println!("{cells} cells checked against {} CSVs", checked_csvs.len());
+    assert!(
+        failures.is_empty(),
+        "{} mismatches:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+#[test]
+fn readme_is_a_first_page() {
+    let bytes = fs::metadata(root().join("README.md"))
+        .expect("README.md")
+        .len() as usize;
+    println!("README.md: {bytes} bytes (at most {README_MAX_BYTES})");
+    assert!(
+        bytes <= README_MAX_BYTES,
+        "README.md is {bytes} bytes, more than {README_MAX_BYTES}"
+    );
+}
+
+/// Targets of `[text](target)` and `![alt](target)`, outside code spans and fenced blocks.
+fn link_targets(text: &str) -> Vec<(usize, String)> {
+    let mut targets = Vec::new();
+    let mut fenced = false;
+    for (n, line) in text.lines().enumerate() {
+        if line.trim_start().starts_with("```") {
+            fenced = !fenced;
+            continue;
+        }
+        if fenced {
+            continue;
+        }
+        // Drop code spans so that `a](b)` in code is not read as a link.
+        let prose: String = line
+            .split('`')
+            .enumerate()
+            .filter(|(i, _)| i % 2 == 0)
+            .map(|(_, s)| s)
+            .collect::<Vec<_>>()
+            .join(" ");
+        let mut rest = prose.as_str();
+        while let Some(at) = rest.find("](") {
+            let after = &rest[at + 2..];
+            let Some(end) = after.find(')') else { break };
+            targets.push((n + 1, after[..end].trim().to_string()));
+            rest = &after[end + 1..];
+        }
+    }
+    targets
+}
+
+#[test]
+fn relative_links_point_to_files() {
+    let mut dead = Vec::new();
+    let mut count = 0;
+    for doc in doc_files() {
+        let text = read_doc(&doc);
+        let base = Path::new(&doc).parent().unwrap_or(Path::new(""));
+        for (line, target) in link_targets(&text) {
+            let target = target.split_whitespace().next().unwrap_or("");
+            if target.is_empty()
+                || target.starts_with('#')
+                || target.contains("://")
+                || target.starts_with("mailto:")
+            {
+                continue;
+            }
+            let path = target.split('#').next().unwrap_or(target);
+            count += 1;
+            match inside_repo(base, path) {
+                Some(p) if root().join(&p).exists() => {}
+                Some(_) => dead.push(format!("{doc}:{line}: `{target}` does not exist")),
+                None => dead.push(format!("{doc}:{line}: `{target}` leaves the repository")),
+            }
+        }
+    }
+    println!("{count} relative links checked");
+    assert!(dead.is_empty(), "dead links:\n{}", dead.join("\n"));
+}
