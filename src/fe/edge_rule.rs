@@ -7,7 +7,7 @@
 //! fraction [`DISCRETE_EDGE_FRACTION`] of that interval, calibrated on Westergaard's
 //! solution. The alternatives, gap fits through the next free nodes
 //! ([`EdgeRule::GapPower`], [`EdgeRule::PeriodicGap`]), and how each converges, are
-//! compared in docs/verification.md and docs/replication.md (the edge rule). Between
+//! compared in docs/replication.md R7. Between
 //! events (unloading, a pressure target) the edge node is the one after the last loaded
 //! node ([`loaded_edge_node`]).
 
@@ -31,7 +31,7 @@ pub enum EdgeRule {
     /// Fit of the periodic Westergaard gap shape `g ∝ G(x; a)` through the vertical gaps
     /// of nodes `k + 1`, `k + 2` (exact in the linear limit, `(x − a)^{3/2}` near the
     /// edge). At finite strain the gap is not of that shape, and the rule errs where the
-    /// aspect ratio is large (docs/verification.md, the edge rule).
+    /// aspect ratio is large (docs/replication.md R7, the contact edge).
     PeriodicGap,
     /// Fit of `g ∝ (x − a)^{3/2}` through the vertical gaps of nodes `k + 1`, `k + 2`.
     GapPower,
@@ -42,8 +42,8 @@ pub enum EdgeRule {
 /// kinematics and a small aspect ratio, the `a` that Westergaard's
 /// `p̄/E* = π (Δ/λ) sin²(π a/λ)` gives for the computed `p̄`, as a fraction of
 /// `[x_{k−1}, x_k]`, on three meshes (`PHI_CALIB=1 cargo run --release --example
-/// fe_study`; the calibration and its check at finite strain are in docs/verification.md,
-/// the edge rule).
+/// fe_study`; the calibration and its check at finite strain are in docs/replication.md
+/// R7).
 pub const DISCRETE_EDGE_FRACTION: f64 = 0.64;
 
 impl Default for EdgeRule {

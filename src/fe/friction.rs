@@ -281,7 +281,7 @@ impl Branch {
     /// one-sided one of continued slip): a node committed while sliding sits there
     /// (`e_{n+1} = ±e_c`), and its load tangent and first Newton step then see it slide on
     /// instead of holding it on the stiff stick spring (fewer tangent assemblies:
-    /// docs/performance.md, solver choices).
+    /// docs/performance.md, frictional speed).
     pub(super) fn of(trial_slip: f64, slip_c: f64) -> Self {
         if trial_slip.abs() < slip_c {
             Branch::Stick
@@ -391,7 +391,7 @@ impl FrictionRow {
     /// lengths long and the line search cuts it to a small fraction. The factor of `δ(w L)`
     /// is therefore `φ` clamped to `[−1, 1]`, the value it has at any landing point on the
     /// branch; the force and `δφ` keep the affine law. Inside the band (every assembled row)
-    /// nothing changes (docs/performance.md, solver choices).
+    /// nothing changes (docs/performance.md, frictional speed).
     pub(super) fn law_row(&self, on: LawPiece, slip_c: f64) -> LawRow {
         let Some(r) = self.regime_row(on.regime) else {
             return LawRow::default();
@@ -411,8 +411,8 @@ impl FrictionRow {
     /// `w L` of the Coulomb and Orowan regimes (the rule of [`FrictionLaw::eval`]). An open
     /// node (`N ≤ 0`, released by the active-set loop after the solve) stays open, and a
     /// node stays in its regime where the step would open it: switching into and out of
-    /// the open regime too made the choice cost more iterations (docs/performance.md, solver
-    /// choices).
+    /// the open regime too made the choice cost more iterations (docs/performance.md,
+    /// frictional speed).
     pub(super) fn regime_after(&self, step: &[f64]) -> Regime {
         let coulomb = self.coulomb.w_limit_after(step);
         let orowan = self.orowan.w_limit_after(step);

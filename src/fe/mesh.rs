@@ -14,7 +14,7 @@
 //!   reference configuration, so that they are not much flatter than square when
 //!   stretched. With smaller ratios the coarse mesh loses stability under the peak at
 //!   AR = 0.3 before a/λ = 0.45 (Newton stalls on an indefinite tangent whose direction is
-//!   the sliding node next to the peak; docs/verification.md, mesh grading);
+//!   the sliding node next to the peak; docs/replication.md R10);
 //! * along `Y`: geometric layers whose first (bottom) layer is
 //!   `first_layer_over_dx × (½/nx)` thick, growing toward the bonded face.
 
