@@ -23,7 +23,7 @@ use super::{solve_curve, CurveFailure, CurvePoint, LayerProblem, MeshLevel, Solv
 /// `p̄/E*` at `a/λ` by cubic interpolation of `√p̄` (see module docs); `None` outside
 /// the range of the points. A point whose `a` does not exceed the previous one's is
 /// skipped: the curve may repeat an edge position (a node that touches with a
-/// vanishing force, is released and touches again at a marginally larger load), and
+/// vanishing force, is released and touches again at a marginally larger slab displacement), and
 /// the interpolation needs distinct abscissae (closer than 10⁻⁶ counts as repeated;
 /// distinct events are an element length, ≳ 10⁻³, apart).
 /// The formal orders of the FE error (the contact-edge location, first order, and the Q1 load

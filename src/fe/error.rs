@@ -46,7 +46,7 @@ pub enum SolveError {
         /// Active-set updates performed.
         iterations: usize,
     },
-    /// The load at which the next contact-face node touches could not be found.
+    /// The slab displacement at which the next contact-face node touches could not be found.
     #[error(
         "edge search did not converge at load step {step} (node {node}, remaining gap {gap:.3e})"
     )]
@@ -78,11 +78,11 @@ pub enum SolveError {
         target: f64,
     },
     /// An unloading step failed even after the maximum number of step cuts.
-    #[error("unloading stopped at slab displacement d/λ = {slab_displacement_over_lambda:.6e} (next load {target:.6e}) after {cuts} step cuts: {reason}")]
+    #[error("unloading stopped at slab displacement d/λ = {slab_displacement_over_lambda:.6e} (next target {target:.6e}) after {cuts} step cuts: {reason}")]
     UnloadingStalled {
         /// Slab displacement of the last converged unloading state.
         slab_displacement_over_lambda: f64,
-        /// The load the failed step aimed at.
+        /// The slab displacement the failed step aimed at (units of λ).
         target: f64,
         /// Step cuts tried.
         cuts: usize,

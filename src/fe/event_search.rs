@@ -212,7 +212,7 @@ impl EventSearch<'_> {
 
     /// One bordered attempt ([`equilibrate_event`]), predicted for
     /// `base.d + increment`: accepted if the target's gap is within the tolerance and the
-    /// load has advanced beyond the last event.
+    /// slab displacement has advanced beyond the last event.
     fn bordered(
         &self,
         model: &Model,

@@ -153,7 +153,7 @@ pub struct SolveOptions {
     /// Stop once the contact half-width reaches this `a/λ` (in `(0, ½)`).
     pub until_a_over_lambda: f64,
     /// Instead: load until the mean pressure `p̄/E*` is this (> 0): the last point is the
-    /// state at this load (within 10⁻⁹ relative), not an edge event; `until_a_over_lambda`
+    /// state at this mean pressure (within 10⁻⁹ relative), not an edge event; `until_a_over_lambda`
     /// is then the largest contact half-width allowed on the way (a curve that reaches it
     /// first is incomplete).
     pub until_p_over_estar: Option<f64>,
@@ -188,7 +188,7 @@ pub struct SolveOptions {
     pub max_edge_line_search: usize,
     /// Edge search: relative gap tolerance (w.r.t. the target node's initial gap).
     pub edge_gap_rtol: f64,
-    /// Edge search: solve for the event load with the bordered Newton method (`d` as
+    /// Edge search: solve for the event's slab displacement with the bordered Newton method (`d` as
     /// an unknown) first, falling back to the secant search if it fails.
     pub bordered_edge_solve: bool,
     /// Use the tangent (Euler) predictor (else extrapolate the last increment).
@@ -197,7 +197,7 @@ pub struct SolveOptions {
     /// the step lands (semismooth Newton, [`friction_step`]); else the
     /// branch of the current state.
     pub semismooth_friction: bool,
-    /// Edge search: maximum trial loads per step.
+    /// Edge search: maximum trial slab displacements per step.
     pub max_edge_iterations: usize,
     /// Maximum active-set updates per load step.
     pub max_active_set_updates: usize,

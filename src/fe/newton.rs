@@ -199,7 +199,7 @@ const BORDERED_GAP_FRACTION: f64 = 0.5;
 const LOOSE_GAP_FACTOR: f64 = 100.0;
 
 /// Smallest `|∇c·z₂| = |∂g_k/∂d|` (dimensionless) the bordered step divides by: guards
-/// the division against an exact zero (a target node that does not move with the load).
+/// the division against an exact zero (a target node that does not move with the slab).
 /// Safeguard, far below any rate met in practice and above the underflow threshold of
 /// doubles.
 const INSENSITIVE_GAP_RATE: f64 = 1e-300;
