@@ -636,7 +636,7 @@ impl Model {
     ) -> Result<(), LinSolveError> {
         let law = match self.friction {
             Some(law) if semismooth => law,
-            _ => return self.sys.solve_multi(rhs),
+            _ => return self.sys.solve(rhs),
         };
         let rows = &self.friction_rows;
         let with_load_column = rhs.len() > 1;
@@ -647,7 +647,7 @@ impl Model {
             .collect();
         let switching = self
             .sys
-            .solve_multi_switching(rhs, MAX_BRANCH_SWITCHES, |solutions| {
+            .solve_switching_rows(rhs, MAX_BRANCH_SWITCHES, |solutions| {
                 let step = direction(solutions);
                 let mut landed = assumed.clone();
                 for (i, r) in rows.iter().enumerate() {

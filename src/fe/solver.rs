@@ -414,7 +414,7 @@ fn deformed_state(model: &Model, st: &State, grad: &[f64], estar: f64) -> Deform
 pub(crate) fn load_tangent(model: &mut Model, st: &State) -> Option<Vec<f64>> {
     let f = model.assemble(st, true)?;
     let mut rhs = [f.dresid_dd.iter().map(|v| -v).collect::<Vec<f64>>()];
-    model.sys.solve_multi(&mut rhs).ok()?;
+    model.sys.solve(&mut rhs).ok()?;
     let [z] = rhs;
     Some(z)
 }
