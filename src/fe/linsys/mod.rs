@@ -7,7 +7,7 @@
 //! factorisation.
 //!
 //! # Solve chain
-//! The frictionless tangent `S` is symmetric ([`symmetric`]):
+//! The frictionless tangent `S` is symmetric (`symmetric.rs`):
 //! 1. supernodal Cholesky `L Lᵀ`;
 //! 2. when Cholesky fails (the reduced Hessian need not be positive definite away from
 //!    equilibrium), `L D Lᵀ` without pivoting, accepted if its solution's residual is
@@ -16,14 +16,14 @@
 //!    until one has a positive `D` (the matrix was positive definite): Cholesky first again;
 //! 3. else the symmetric-indefinite `L B Lᵀ` (Bunch–Kaufman pivoting inside the
 //!    supernodes);
-//! 4. LU with partial pivoting as the last resort ([`lu`]).
+//! 4. LU with partial pivoting as the last resort (`lu.rs`).
 //!
 //! Steps 1–3 share one symbolic structure and work memory, and read the matrix's lower
 //! triangle already in the fill-reducing order, gathered through a fixed map
 //! (`OrderedLower`).
 //!
 //! The frictional tangent is the symmetric matrix plus a few non-symmetric rows, one per
-//! contact node with friction ([`woodbury`]): `K = S + Σᵢ e_{rᵢ} vᵢᵀ = S + E Vᵀ`, a
+//! contact node with friction (`woodbury.rs`): `K = S + Σᵢ e_{rᵢ} vᵢᵀ = S + E Vᵀ`, a
 //! rank-`m` update with `m` at most the number of contact-face nodes.
 //! [`SparseSystem::solve`] solves it by the Sherman–Morrison–Woodbury identity:
 //! `z = S⁻¹ b` through the symmetric chain above, a dense `m × m` system
@@ -33,7 +33,7 @@
 //! Cholesky factorisations of `S` (`docs/performance.md`).
 //!
 //! `Vᵀ S⁻¹ E` needs `S⁻¹` only on the equations `T` that the updates touch. When those are
-//! ordered last in the factorisation ([`SparseSystem::order_last`], [`trailing`]: the model
+//! ordered last in the factorisation ([`SparseSystem::order_last`], `trailing.rs`: the model
 //! orders the contact face and the layer of nodes above it last), the factor's trailing
 //! block `L_TT` factors the Schur complement `Σ` of `S` onto `T`, and `(S⁻¹)_TT = Σ⁻¹`: the
 //! `m` columns of `S⁻¹ E` on `T` cost two dense triangular solves of size `|T|` instead of
@@ -50,8 +50,8 @@
 //! # Files
 //! This file holds the matrix ([`SparseSystem`]: pattern, values, element and diagonal
 //! positions, counters) and the entry points [`SparseSystem::solve`] and
-//! [`SparseSystem::solve_switching_rows`]; [`symmetric`] the chain for `S`, [`lu`] the
-//! LU, [`woodbury`] the row updates and their solve, [`trailing`] the trailing block.
+//! [`SparseSystem::solve_switching_rows`]; `symmetric.rs` the chain for `S`, `lu.rs` the
+//! LU, `woodbury.rs` the row updates and their solve, `trailing.rs` the trailing block.
 
 mod lu;
 mod symmetric;

@@ -6,8 +6,9 @@
 //! following factorisations try `L D Lᵀ` first, until one finds a positive `D` (see the
 //! [module documentation](super)).
 
-use super::RESIDUAL_RTOL_SQUARED;
-use super::{pattern, residual_within, Factored, LinSolveError, Scratch, SparseSystem};
+use super::{
+    pattern, residual_within, Factored, LinSolveError, Scratch, SparseSystem, RESIDUAL_RTOL_SQUARED,
+};
 use faer::dyn_stack::MemStack;
 use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
@@ -329,8 +330,8 @@ impl SparseSystem {
 
     /// Sparse `L D Lᵀ` without pivoting, on the Cholesky symbolic structure, of the
     /// gathered lower triangle into `llt_values`: the one `L D Lᵀ` factorisation; `false`
-    /// on a zero pivot. Indefinite tangents factor this way at a fraction of the cost of
-    /// `L B Lᵀ` (`docs/performance.md`).
+    /// on a zero pivot. Cheaper than `L B Lᵀ` on the indefinite tangents, which it
+    /// factors accurately enough as a rule (`docs/performance.md`).
     fn factor_ldlt(&mut self) -> bool {
         let symbolic = self.symbolic_cholesky.clone().expect("symbolic set");
         let buf = &mut self

@@ -127,7 +127,7 @@ impl SparseSystem {
     /// equations the updates touch, `x = S⁻¹ (b − E y)`, accepted if
     /// `‖K x − b‖ ≤ 10⁻⁸ ‖b‖` for every right-hand side, else LU of `K`.
     ///
-    /// Before that, `switch` may change updated rows of the system in view of its
+    /// Before the full solve, `switch` may change updated rows of the system in view of its
     /// solutions: it is shown the solutions (exact on the equations ordered last,
     /// [`Self::order_last`], when the updates lie among them, NaN elsewhere; exact
     /// everywhere otherwise) and returns the [`RowChange`]s (relative to the assembled `K`
