@@ -12,7 +12,7 @@
 //! assembled ones ([`super::friction::FrictionRow::switched`], exact inside the band: unit test in
 //! [`super::assembly`]; beyond it the threshold's sensitivity keeps the band's factor,
 //! [`super::friction::FrictionRow::law_row`]) and the system is solved again by Woodbury with the same
-//! factorisation (`SparseSystem::solve_multi_switching`), until the pieces agree with the
+//! factorisation (`SparseSystem::solve_switching_rows`), until the pieces agree with the
 //! step; if they have not within [`MAX_BRANCH_SWITCHES`], the assembled step is taken.
 //!
 //! Why: the slip tangent is flat, so a node whose solution lies in the narrow stick band is
@@ -58,7 +58,7 @@ pub(crate) fn solve_newton_step(
     };
     let law = match model.friction {
         Some(law) if opts.semismooth_friction => law,
-        _ => return asm.sys.solve_multi(rhs).map_err(failed),
+        _ => return asm.sys.solve(rhs).map_err(failed),
     };
     let rows = &asm.friction_rows;
     let with_load_column = rhs.len() > 1;
@@ -69,7 +69,7 @@ pub(crate) fn solve_newton_step(
         .collect();
     let switching = asm
         .sys
-        .solve_multi_switching(rhs, MAX_BRANCH_SWITCHES, |solutions| {
+        .solve_switching_rows(rhs, MAX_BRANCH_SWITCHES, |solutions| {
             let step = direction(solutions);
             let mut landed = assumed.clone();
             for (i, r) in rows.iter().enumerate() {

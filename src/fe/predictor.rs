@@ -12,7 +12,7 @@ use super::SolveOptions;
 pub(crate) fn load_tangent(model: &Model, asm: &mut Assembly, st: &State) -> Option<Vec<f64>> {
     let f = asm.assemble(model, st, true)?;
     let mut rhs = [f.dresid_dd.iter().map(|v| -v).collect::<Vec<f64>>()];
-    asm.sys.solve_multi(&mut rhs).ok()?;
+    asm.sys.solve(&mut rhs).ok()?;
     let [z] = rhs;
     Some(z)
 }
