@@ -21,7 +21,7 @@ use std::time::Instant;
 mod common;
 use common::peak_memory_kb;
 use wavy::fe::{solve_curve, Curve, Interface, Kinematics, LayerProblem, MeshLevel, SolveOptions};
-use wavy::runner::tier_timings::median;
+use wavy::runner::time_tiers::median;
 
 const CHILD: &str = "WAVY_SPEED_TABLE_CHILD";
 

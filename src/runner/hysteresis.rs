@@ -8,7 +8,7 @@
 //! frictionless loop closes, `|W| ≤ CLOSURE_RTOL · W_load`, and no loop creates energy,
 //! `W ≥ −CLOSURE_RTOL · W_load` (`W_load = ∫ p̄ dδ` along loading).
 
-use super::fe_cases::{self, FeCase, FeOutcome, FePhysics};
+use super::fe_cases::{self, FeCase, FeOutcome, FePhysics, SolvedCases};
 use super::scenes::{Scene, SceneContext, SceneResult};
 use super::RunOptions;
 use crate::accuracy::richardson;
@@ -151,72 +151,137 @@ fn loading_work(points: &[CurvePoint]) -> f64 {
 
 fn run(title: &str, s: &HysteresisScene, opts: &RunOptions) -> Result<SceneResult> {
     let loops = s.loops(opts);
-    let all_cases = s.fe_cases(opts);
-    let all_outcomes = fe_cases::solve_all(&all_cases, opts)?;
-    let outcome_of = |case: &FeCase| -> Option<&FeOutcome> {
-        all_cases
-            .iter()
-            .zip(&all_outcomes)
-            .find(|(k, _)| k.problem == case.problem && k.options == case.options && k.unload)
-            .map(|(_, o)| o)
-    };
+    let solved = SolvedCases::solve(s.fe_cases(opts), opts)?;
     let order = match s.fe.error_estimate {
         true => Some(crate::accuracy::measured::committed()?.fe_order()?),
         false => None,
     };
     let estar = s.fe.estar_mpa.get();
-
-    let mut points = Table::new(
-        "",
-        &[
-            "series",
-            "aspect_ratio",
-            "tau_max_over_estar",
-            "thickness_over_lambda",
-            "branch",
-            "a_over_lambda",
-            "p_over_estar",
-            "slab_displacement_over_lambda",
-        ],
-    );
-    let mut dissipation_header = vec![
-        "series",
-        "aspect_ratio",
-        "tau_max_over_estar",
-        "thickness_over_lambda",
-        "peak_a_over_lambda",
-        "peak_p_over_estar",
-        "loading_work_over_estar_lambda2",
-        "dissipation_over_estar_lambda2",
-        "dissipated_fraction",
-    ];
-    if order.is_some() {
-        dissipation_header.extend([
-            "dissipation_coarse_mesh",
-            "dissipation_richardson",
-            "dissipation_error_estimate",
-        ]);
-    }
-    dissipation_header.push("status");
-    let mut dissipation = Table::new("dissipation", &dissipation_header);
+    let mut tables = Tables::new(order.is_some());
     let mut incomplete = vec![];
     let mut results: Vec<(&Loop, &FeOutcome, Option<Dissipation>)> = vec![];
     for l in &loops {
         let c = &l.case;
-        let o = outcome_of(c).expect("every loop was solved");
+        let o = solved.outcome(c).expect("every loop was solved");
         let (ar, h) = (c.problem.aspect_ratio, c.problem.thickness_over_lambda);
-        let tau_e = c.tau_max_mpa / estar;
-        let label = format!("AR = {ar}, τ_max/E* = {tau_e}, h/λ = {h}");
+        let label = format!("AR = {ar}, τ_max/E* = {}, h/λ = {h}", c.tau_max_mpa / estar);
+        tables.push_points(l, o, estar);
+        let d = match &o.failure {
+            Some(f) => {
+                let (branch, reached) = match o.unloading.last() {
+                    Some(p) => ("unloading", p.p_over_estar),
+                    None => ("loading", o.points.last().map_or(0.0, |p| p.p_over_estar)),
+                };
+                incomplete.push(format!(
+                    "loop {label} stopped while {branch} at p̄/E* = {reached:.4}: {f}"
+                ));
+                tables.push_dissipation(l, o, estar, Err(format!("incomplete ({branch}): {f}")));
+                None
+            }
+            None => {
+                let d = dissipation(c, o, &solved, order, &label)?;
+                tables.push_dissipation(l, o, estar, Ok(&d));
+                Some(d)
+            }
+        };
+        results.push((l, o, d));
+    }
+    let figure = figure(title, s, &results, order)?;
+    // incomplete loops are reported by the run itself (`SceneResult::incomplete`)
+    Ok(SceneResult {
+        tables: vec![tables.points, tables.dissipation],
+        figure,
+        notes: vec![],
+        incomplete,
+    })
+}
+
+/// The dissipation of the complete loop `o` of case `c`, checked (a frictionless loop closes,
+/// no loop creates energy), with its Richardson estimate when `order` is given.
+fn dissipation(
+    c: &FeCase,
+    o: &FeOutcome,
+    solved: &SolvedCases,
+    order: Option<f64>,
+    label: &str,
+) -> Result<Dissipation> {
+    let w_load = loading_work(&o.points);
+    let w = cycle_work_over_estar_lambda2(&o.points, &o.unloading);
+    let reversible = c.problem.interface == Interface::Frictionless;
+    if reversible && w.abs() > CLOSURE_RTOL * w_load {
+        bail!("the frictionless loop {label} does not close: dissipated W/(E*λ²) = {w:.3e}, beyond {CLOSURE_RTOL:e} of the loading work {w_load:.4e}");
+    }
+    if w < -CLOSURE_RTOL * w_load {
+        bail!("the loop {label} creates energy: W/(E*λ²) = {w:.3e} < 0 beyond {CLOSURE_RTOL:e} of the loading work {w_load:.4e}");
+    }
+    // W on the next coarser mesh, and the Richardson extrapolation from the two
+    let coarse = order.and_then(|order| {
+        let (coarse_case, ratio) = fe_cases::coarser_cases(std::slice::from_ref(c))
+            .pop()
+            .flatten()?;
+        let co = solved.outcome(&coarse_case)?;
+        if co.failure.is_some() {
+            return None;
+        }
+        let wc = cycle_work_over_estar_lambda2(&co.points, &co.unloading);
+        Some((wc, richardson(wc, w, ratio, order)))
+    });
+    Ok(Dissipation {
+        loading_work: w_load,
+        work: w,
+        coarse,
+    })
+}
+
+/// The scene's two tables: every point of every loop, and each loop's dissipation.
+struct Tables {
+    points: Table,
+    dissipation: Table,
+    /// The dissipation table has the mesh-convergence columns.
+    with_estimates: bool,
+}
+
+impl Tables {
+    fn new(with_estimates: bool) -> Self {
+        let mut dissipation_header = vec![
+            "series",
+            "aspect_ratio",
+            "tau_max_over_estar",
+            "thickness_over_lambda",
+            "peak_a_over_lambda",
+            "peak_p_over_estar",
+            "loading_work_over_estar_lambda2",
+            "dissipation_over_estar_lambda2",
+            "dissipated_fraction",
+        ];
+        if with_estimates {
+            dissipation_header.extend([
+                "dissipation_coarse_mesh",
+                "dissipation_richardson",
+                "dissipation_error_estimate",
+            ]);
+        }
+        dissipation_header.push("status");
+        Tables {
+            points: Table::new("", &POINTS_HEADER),
+            dissipation: Table::new("dissipation", &dissipation_header),
+            with_estimates,
+        }
+    }
+
+    /// Every point of the loop `o`, loading then unloading.
+    fn push_points(&mut self, l: &Loop, o: &FeOutcome, estar_mpa: f64) {
+        let c = &l.case;
         for (branch, pts) in [
             (LoadDirection::Loading, &o.points),
             (LoadDirection::Unloading, &o.unloading),
         ] {
             for p in pts {
-                points.push(vec![
+                self.points.push(vec![
                     l.series.name().into(),
-                    ar.into(),
-                    tau_e.into(),
-                    h.into(),
+                    c.problem.aspect_ratio.into(),
+                    (c.tau_max_mpa / estar_mpa).into(),
+                    c.problem.thickness_over_lambda.into(),
                     branch.name().into(),
                     p.a_over_lambda.into(),
                     p.p_over_estar.into(),
@@ -224,83 +289,63 @@ fn run(title: &str, s: &HysteresisScene, opts: &RunOptions) -> Result<SceneResul
                 ]);
             }
         }
+    }
+
+    /// The loop's dissipation, or (`Err`) the status of a loop that stopped short.
+    fn push_dissipation(
+        &mut self,
+        l: &Loop,
+        o: &FeOutcome,
+        estar_mpa: f64,
+        d: Result<&Dissipation, String>,
+    ) {
+        let c = &l.case;
         let peak = o.points.last();
         let mut row: Vec<Cell> = vec![
             l.series.name().into(),
-            ar.into(),
-            tau_e.into(),
-            h.into(),
+            c.problem.aspect_ratio.into(),
+            (c.tau_max_mpa / estar_mpa).into(),
+            c.problem.thickness_over_lambda.into(),
             peak.map(|p| p.a_over_lambda).into(),
             peak.map(|p| p.p_over_estar).into(),
         ];
-        let d = match &o.failure {
-            Some(f) => {
-                let (branch, reached) = match o.unloading.last() {
-                    Some(p) => ("unloading", p.p_over_estar),
-                    None => ("loading", peak.map_or(0.0, |p| p.p_over_estar)),
-                };
-                incomplete.push(format!(
-                    "loop {label} stopped while {branch} at p̄/E* = {reached:.4}: {f}"
-                ));
-                row.extend([Cell::Empty, Cell::Empty, Cell::Empty]);
-                if order.is_some() {
-                    row.extend([Cell::Empty, Cell::Empty, Cell::Empty]);
+        let empty = || [Cell::Empty, Cell::Empty, Cell::Empty];
+        match d {
+            Err(status) => {
+                row.extend(empty());
+                if self.with_estimates {
+                    row.extend(empty());
                 }
-                row.push(format!("incomplete ({branch}): {f}").into());
-                None
+                row.push(status.into());
             }
-            None => {
-                let w_load = loading_work(&o.points);
-                let w = cycle_work_over_estar_lambda2(&o.points, &o.unloading);
-                let reversible = c.problem.interface == Interface::Frictionless;
-                if reversible && w.abs() > CLOSURE_RTOL * w_load {
-                    bail!("the frictionless loop {label} does not close: dissipated W/(E*λ²) = {w:.3e}, beyond {CLOSURE_RTOL:e} of the loading work {w_load:.4e}");
-                }
-                if w < -CLOSURE_RTOL * w_load {
-                    bail!("the loop {label} creates energy: W/(E*λ²) = {w:.3e} < 0 beyond {CLOSURE_RTOL:e} of the loading work {w_load:.4e}");
-                }
-                // W on the next coarser mesh, and the Richardson extrapolation from the two
-                let coarse = order.and_then(|order| {
-                    let (coarse_case, ratio) = fe_cases::coarser_cases(std::slice::from_ref(c))
-                        .pop()
-                        .flatten()?;
-                    let co = outcome_of(&coarse_case)?;
-                    if co.failure.is_some() {
-                        return None;
-                    }
-                    let wc = cycle_work_over_estar_lambda2(&co.points, &co.unloading);
-                    Some((wc, richardson(wc, w, ratio, order)))
-                });
+            Ok(d) => {
+                let (w_load, w) = (d.loading_work, d.work);
                 row.extend([w_load.into(), w.into(), (w / w_load).into()]);
-                if order.is_some() {
-                    match coarse {
+                if self.with_estimates {
+                    match d.coarse {
                         Some((wc, limit)) => {
                             row.extend([wc.into(), limit.into(), (limit - w).abs().into()])
                         }
-                        None => row.extend([Cell::Empty, Cell::Empty, Cell::Empty]),
+                        None => row.extend(empty()),
                     }
                 }
                 row.push("complete".into());
-                Some(Dissipation {
-                    loading_work: w_load,
-                    work: w,
-                    coarse,
-                })
             }
-        };
-        dissipation.push(row);
-        results.push((l, o, d));
+        }
+        self.dissipation.push(row);
     }
-
-    let figure = figure(title, s, &results, order)?;
-    // incomplete loops are reported by the run itself (`SceneResult::incomplete`)
-    Ok(SceneResult {
-        tables: vec![points, dissipation],
-        figure,
-        notes: vec![],
-        incomplete,
-    })
 }
+
+const POINTS_HEADER: [&str; 8] = [
+    "series",
+    "aspect_ratio",
+    "tau_max_over_estar",
+    "thickness_over_lambda",
+    "branch",
+    "a_over_lambda",
+    "p_over_estar",
+    "slab_displacement_over_lambda",
+];
 
 /// `(x, y)` of the points of both branches of `o`, loading then unloading.
 fn branch_points(
