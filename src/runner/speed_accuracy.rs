@@ -11,14 +11,15 @@
 use super::fe_cases::{FeCase, FeOutcome, FePhysics, SolvedCases};
 use super::richardson_reference::Reference;
 use super::scene_output::{Layout, Remarks};
+use super::speed_accuracy_figure::figure_panels;
+use super::tier_measurement::{pareto_front, CaseMeasurements, FeCost, Measurement};
 use super::scenes::{Scene, SceneContext, SceneResult};
 use super::tier_timings::{self, Timings};
 use super::RunOptions;
 use crate::accuracy::measured::PHYSICS_COLUMNS;
-use crate::accuracy::{self, relative_errors, Tier};
+use crate::accuracy::{relative_errors, Tier};
 use crate::fe::{convergence, Kinematics, MeshLevel};
 use crate::models::PressureLaw;
-use crate::plot::{palette, LegendPosition, Panel, Series};
 use crate::spec::{Bounded, FeSection, Grid, Positive, SpecError, Validator};
 use crate::table::{Cell, Table};
 use anyhow::{bail, Context, Result};
@@ -209,55 +210,6 @@ impl Scene for SpeedAccuracyScene {
     }
 }
 
-/// One tier's measurement at one case.
-struct Measurement {
-    tier: Tier,
-    errors: Option<accuracy::ErrorSummary>,
-    /// Why there is no error (an FE curve that stops short, an unphysical law value).
-    status: String,
-    seconds_per_curve: f64,
-    seconds_per_point: Option<f64>,
-    fe: Option<FeCost>,
-}
-
-struct FeCost {
-    dofs: usize,
-    load_steps: usize,
-    newton_iterations: usize,
-}
-
-/// Every tier measured at one case (AR, τ_max in MPa).
-struct CaseMeasurements {
-    aspect_ratio: f64,
-    tau_max_mpa: f64,
-    reference_uncertainty: f64,
-    measurements: Vec<Measurement>,
-    /// [`pareto_front`] of the measurements.
-    front: Vec<usize>,
-}
-
-/// The Pareto front: indices of the measurements no other one beats in both error and cost,
-/// by increasing cost.
-fn pareto_front(ms: &[Measurement]) -> Vec<usize> {
-    let mut ok: Vec<usize> = (0..ms.len()).filter(|&i| ms[i].errors.is_some()).collect();
-    ok.sort_by(|&i, &j| {
-        ms[i]
-            .seconds_per_curve
-            .total_cmp(&ms[j].seconds_per_curve)
-            .then(ms[i].errors.unwrap().max.total_cmp(&ms[j].errors.unwrap().max))
-    });
-    let mut front = vec![];
-    let mut best = f64::INFINITY;
-    for i in ok {
-        let e = ms[i].errors.unwrap().max;
-        if e < best {
-            best = e;
-            front.push(i);
-        }
-    }
-    front
-}
-
 fn run(
     title: &str,
     s: &SpeedAccuracyScene,
@@ -291,7 +243,7 @@ fn run(
             });
         }
     }
-    let (panels, failed) = figure_panels(s, &cases);
+    let (panels, failed) = figure_panels(&s.tiers, &cases);
     let mut remarks = Remarks::with_footer(footer(s, timings, timings_name));
     if !failed.is_empty() {
         remarks.footer_and_note(format!(
@@ -414,16 +366,6 @@ fn measure(
         fe,
     };
     Ok((m, values))
-}
-
-impl Measurement {
-    /// With the relative errors of `values` against `reference` (none without values).
-    fn with_errors(self, values: Option<&[f64]>, reference: &[f64]) -> Self {
-        Measurement {
-            errors: values.map(|v| relative_errors(v, reference)),
-            ..self
-        }
-    }
 }
 
 /// The scene's three tables: each tier's measurement, the reference of each case, and each
@@ -549,101 +491,6 @@ const BANDS_HEADER: [&str; 6] = [
     "max_rel_error",
 ];
 
-/// One panel per case: error against cost, each tier a marker, the finite-strain meshes joined,
-/// the Pareto front dashed. Also returns, per case with tiers that have no curve, which.
-fn figure_panels(s: &SpeedAccuracyScene, cases: &[CaseMeasurements]) -> (Vec<Panel>, Vec<String>) {
-    let measured = cases.iter().flat_map(|c| &c.measurements);
-    let with_errors: Vec<&Measurement> = measured.filter(|m| m.errors.is_some()).collect();
-    let errors: Vec<f64> = with_errors.iter().map(|m| m.errors.unwrap().max).collect();
-    let costs: Vec<f64> = with_errors.iter().map(|m| m.seconds_per_curve).collect();
-    let (x_range, y_range) = (log_range(&errors), log_range(&costs));
-    let finite_meshes: Vec<String> = s
-        .tiers
-        .iter()
-        .filter_map(|t| match t {
-            Tier::Fe {
-                kinematics: Kinematics::Finite,
-                elements_along_face,
-            } => Some(elements_along_face.to_string()),
-            _ => None,
-        })
-        .collect();
-    let fe_label = format!("FE finite strain, mesh {}", finite_meshes.join(", "));
-    let family = |t: &Tier| match t {
-        Tier::Westergaard => ("Westergaard", palette::BLACK),
-        Tier::Wnl(crate::models::CoefficientSet::PaperTable1) => {
-            ("WNL, paper's Table 1", palette::ORANGE)
-        }
-        Tier::Wnl(_) => ("WNL, our refit", palette::GREEN),
-        Tier::Fe {
-            kinematics: Kinematics::Linear,
-            ..
-        } => ("FE linear", palette::PURPLE),
-        Tier::Fe { .. } => (fe_label.as_str(), palette::BLUE),
-    };
-    let mut panels = vec![];
-    let mut failed_cases = vec![];
-    for (k, c) in cases.iter().enumerate() {
-        let ms = &c.measurements;
-        let front_points: Vec<(f64, f64)> = c
-            .front
-            .iter()
-            .map(|&i| (ms[i].errors.unwrap().max, ms[i].seconds_per_curve))
-            .collect();
-        let mut series = vec![Series::dashed(
-            (k == 0).then(|| "Pareto front".into()),
-            palette::GREY,
-            1,
-            front_points,
-        )];
-        let mut labels: Vec<&str> = vec![];
-        for m in ms {
-            let Some(e) = m.errors else { continue };
-            let (label, color) = family(&m.tier);
-            let first = !labels.contains(&label);
-            labels.push(label);
-            series.push(Series::markers(
-                (k == 0 && first).then(|| label.to_string()),
-                color,
-                5,
-                vec![(e.max, m.seconds_per_curve)],
-            ));
-        }
-        let fe_path: Vec<(f64, f64)> = ms
-            .iter()
-            .filter(|m| m.tier.is_finite_fe())
-            .filter_map(|m| Some((m.errors?.max, m.seconds_per_curve)))
-            .collect();
-        series.push(Series::line(None, palette::BLUE, 1, fe_path));
-        let failed: Vec<String> = ms
-            .iter()
-            .filter(|m| m.errors.is_none())
-            .map(|m| m.tier.name())
-            .collect();
-        let (ar, tau) = (c.aspect_ratio, c.tau_max_mpa);
-        let mut notes = vec![format!(
-            "reference uncertain by ≤ {}",
-            accuracy::measured::percent(c.reference_uncertainty)
-        )];
-        if !failed.is_empty() {
-            notes.push(format!("no curve: {}", failed.join(", ")));
-            failed_cases.push(format!("AR = {ar}, τ_max = {tau} MPa: {}", failed.join(", ")));
-        }
-        panels.push(Panel {
-            title: format!("AR = {ar}, τ_max = {tau} MPa"),
-            x_label: "largest relative error of p̄/E*".into(),
-            y_label: "wall time per curve, s".into(),
-            x_range,
-            y_range,
-            series,
-            notes,
-            log_scale: (true, true),
-            legend: (k == 0).then_some(LegendPosition::LowerLeft),
-        });
-    }
-    (panels, failed_cases)
-}
-
 /// The footer: how the error and the wall time are measured.
 fn footer(s: &SpeedAccuracyScene, timings: &Timings, timings_name: &str) -> Vec<String> {
     let xs = s.a_over_lambda.values();
@@ -671,19 +518,3 @@ fn footer(s: &SpeedAccuracyScene, timings: &Timings, timings_name: &str) -> Vec<
     footer
 }
 
-/// Whole decades enclosing `values` (positive), for a logarithmic axis.
-fn log_range(values: &[f64]) -> (f64, f64) {
-    let (lo, hi) = values
-        .iter()
-        .filter(|v| **v > 0.0 && v.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
-            (lo.min(v), hi.max(v))
-        });
-    if !lo.is_finite() {
-        return (0.1, 1.0);
-    }
-    (
-        10f64.powf(lo.log10().floor()),
-        10f64.powf(hi.log10().ceil().max(lo.log10().floor() + 1.0)),
-    )
-}
