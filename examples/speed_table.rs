@@ -1,4 +1,4 @@
-//! The frictional-speed table of `make bench` (README, "Frictional speed"):
+//! The frictional-speed table of `make bench` (docs/performance.md):
 //!
 //! 1. per-curve wall time (median of `--runs` runs, one thread), DOFs, load steps, Newton
 //!    iterations on the converged path, tangent assemblies and factorisations of every

@@ -21,8 +21,8 @@ use serde::Deserialize;
 
 /// Largest `|W| / W_load` of a loop that closes: the unloading branch revisits the loading
 /// branch's loads, so a reversible loop differs from zero only by the solver's tolerance
-/// (residual 10⁻¹⁰ of the largest nodal force: measured |W|/W_load ≤ 10⁻¹¹ at AR 0.3). The
-/// same bound is the round-off allowance of "no loop creates energy".
+/// (residual 10⁻¹⁰ of the largest nodal force; tests/fe_hysteresis.rs pins the closure far
+/// below this bound). The same bound is the round-off allowance of "no loop creates energy".
 pub const CLOSURE_RTOL: f64 = 1e-6;
 
 /// Loading–unloading cycles: p̄–a loops per aspect ratio and shear strength, their

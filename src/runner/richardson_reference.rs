@@ -49,19 +49,20 @@ impl Reference {
         // the observed order where it is below the formal range (a pre-asymptotic sequence,
         // where the formal order would understate it).
         if q.is_nan() || q <= 0.0 {
-            let [o, c, f] = meshes;
-            bail!("{case}: the finite-strain curves on meshes {o}, {c}, {f} do not converge (observed order {q})");
+            let [coarsest, coarse, fine] = meshes;
+            bail!("{case}: the finite-strain curves on meshes {coarsest}, {coarse}, {fine} do not converge (observed order {q})");
         }
         let q_error = q.min(q_used);
         let mut error_estimate = 0.0f64;
         let mut uncertainty = 0.0f64;
         for (r, &rv) in table.rows.iter().zip(&reference) {
-            let [_, c, f] = r.p_over_estar;
-            error_estimate = error_estimate.max(((f - c) / (ratio.powf(q_error) - 1.0) / rv).abs());
+            let [_, p_coarse, p_fine] = r.p_over_estar;
+            let finest_error = (p_fine - p_coarse) / (ratio.powf(q_error) - 1.0);
+            error_estimate = error_estimate.max((finest_error / rv).abs());
             // the reference's uncertainty: its spread over the plausible orders, from the
             // smaller of the observed and the formal lower order to the formal upper one
-            let spread = richardson(c, f, ratio, q_error.min(FORMAL_ORDER_RANGE.0))
-                - richardson(c, f, ratio, FORMAL_ORDER_RANGE.1);
+            let spread = richardson(p_coarse, p_fine, ratio, q_error.min(FORMAL_ORDER_RANGE.0))
+                - richardson(p_coarse, p_fine, ratio, FORMAL_ORDER_RANGE.1);
             uncertainty = uncertainty.max((spread / rv).abs());
         }
         Ok(Reference {

@@ -67,11 +67,12 @@ impl SpeedAccuracyScene {
 
     /// The three meshes of the observed order, coarse to fine (ratio ρ each).
     pub fn order_meshes(&self) -> [usize; 3] {
-        let [c, f] = self.reference_meshes;
-        [c * c / f, c, f]
+        let [coarse, fine] = self.reference_meshes;
+        [coarse * coarse / fine, coarse, fine]
     }
 
-    fn ratio(&self) -> f64 {
+    /// The refinement ratio ρ = fine/coarse of the reference meshes.
+    fn refinement_ratio(&self) -> f64 {
         self.reference_meshes[1] as f64 / self.reference_meshes[0] as f64
     }
 
@@ -145,10 +146,15 @@ impl Scene for SpeedAccuracyScene {
                 ));
             }
         }
-        let [c, f] = self.reference_meshes;
-        let [o, ..] = self.order_meshes();
+        let [coarse, fine] = self.reference_meshes;
+        let [coarsest, ..] = self.order_meshes();
         let range = MeshLevel::ELEMENTS_ALONG_FACE;
-        if !(f > c && range.contains(&c) && range.contains(&f) && o * f == c * c && o >= 4) {
+        if !(fine > coarse
+            && range.contains(&coarse)
+            && range.contains(&fine)
+            && coarsest * fine == coarse * coarse
+            && coarsest >= 4)
+        {
             return Err(v.invalid(
                 "speed_accuracy.reference_meshes",
                 None,
@@ -277,7 +283,7 @@ fn reference(s: &SpeedAccuracyScene, solved: &SolvedCases, ar: f64, tau: f64) ->
     Reference::of(
         curves.map(|(_, o)| o.points.as_slice()),
         s.order_meshes(),
-        s.ratio(),
+        s.refinement_ratio(),
         &s.a_over_lambda.values(),
         &at,
     )
