@@ -166,9 +166,10 @@ fn a_values() -> Vec<f64> {
 }
 
 /// Issue #4, 2 (ii): in the linear limit (AR = 0.01, κ/G = 1000) friction changes p̄(a) by less
-/// than 0.5 %: linear theory has no normal–tangential coupling for an incompressible solid on a
+/// than 0.2 %: linear theory has no normal–tangential coupling for an incompressible solid on a
 /// rigid indenter (R4), so the strongest friction of the sweep (μ = 1, τ_max/E* = 0.2) must be
-/// nearly idle. Same mesh for both curves, so discretisation errors cancel. Measured: ≤ 0.09 %.
+/// nearly idle. Same mesh for both curves, so discretisation errors cancel. Measured: at most
+/// 0.096 % (at a/λ = 0.1); asserted < 0.2 %, about twice that.
 #[test]
 fn friction_is_idle_in_the_linear_limit() {
     let free = wavy_curve(0.01, 0.0, MeshLevel::Coarse);
@@ -178,7 +179,7 @@ fn friction_is_idle_in_the_linear_limit() {
         let effect = p1 / p0 - 1.0;
         eprintln!("AR 0.01 a {a:.2}: friction effect {:.4} %", 100.0 * effect);
         assert!(
-            effect.abs() < 0.005,
+            effect.abs() < 0.002,
             "a {a}: friction changes p̄ by {effect}"
         );
     }

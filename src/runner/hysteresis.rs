@@ -9,11 +9,13 @@
 //! `W ≥ −CLOSURE_RTOL · W_load` (`W_load = ∫ p̄ dδ` along loading).
 
 use super::fe_cases::{self, FeCase, FeOutcome, FePhysics, SolvedCases};
+use super::scene_output::{Layout, Remarks};
 use super::scenes::{Scene, SceneContext, SceneResult};
 use super::RunOptions;
 use crate::accuracy::richardson;
 use crate::fe::{cycle_work_over_estar_lambda2, CurvePoint, Interface, LoadDirection};
-use crate::plot::{padded_range, palette, Figure, LegendPosition, Panel, Series};
+use crate::plot::{padded_range, palette, LegendPosition, Panel, Series};
+use plotters::style::RGBColor;
 use crate::spec::{Bounded, FeSection, NonNegative, Positive, SpecError, Validator};
 use crate::table::{Cell, Table};
 use anyhow::{bail, Result};
@@ -159,7 +161,7 @@ fn run(title: &str, s: &HysteresisScene, opts: &RunOptions) -> Result<SceneResul
     let estar = s.fe.estar_mpa.get();
     let mut tables = Tables::new(order.is_some());
     let mut incomplete = vec![];
-    let mut results: Vec<(&Loop, &FeOutcome, Option<Dissipation>)> = vec![];
+    let mut results: Vec<SolvedLoop> = vec![];
     for l in &loops {
         let c = &l.case;
         let o = solved.outcome(c).expect("every loop was solved");
@@ -186,14 +188,22 @@ fn run(title: &str, s: &HysteresisScene, opts: &RunOptions) -> Result<SceneResul
         };
         results.push((l, o, d));
     }
-    let figure = figure(title, s, &results, order)?;
-    // incomplete loops are reported by the run itself (`SceneResult::incomplete`)
-    Ok(SceneResult {
-        tables: vec![tables.points, tables.dissipation],
-        figure,
-        notes: vec![],
-        incomplete,
-    })
+    let panels = figure_panels(s, &results);
+    let mut remarks = Remarks::with_footer(footer(s, &results, order)?);
+    remarks.incomplete = incomplete;
+    remarks.count_incomplete(
+        "labelled `incomplete`, drawn as far as they got; see the status column of the dissipation table",
+    );
+    let rows = panels.len().div_ceil(3);
+    let layout = Layout {
+        grid: (rows, 3),
+        panel_px: (430, 430),
+        margin_px: 150,
+        font_px: 15,
+    };
+    // incomplete loops are reported by the run itself (`SceneResult::incomplete`), not as notes
+    let tables = vec![tables.points, tables.dissipation];
+    Ok(remarks.finish(title, layout, panels, tables))
 }
 
 /// The dissipation of the complete loop `o` of case `c`, checked (a frictionless loop closes,
@@ -362,7 +372,7 @@ fn branch_points(
 /// A loop as two series: loading solid (with `label`), unloading dashed.
 fn loop_series(
     label: Option<String>,
-    color: plotters::style::RGBColor,
+    color: RGBColor,
     branches: [(LoadDirection, Vec<(f64, f64)>); 2],
 ) -> Vec<Series> {
     branches
@@ -374,83 +384,59 @@ fn loop_series(
         .collect()
 }
 
-fn figure(
-    title: &str,
-    s: &HysteresisScene,
-    results: &[(&Loop, &FeOutcome, Option<Dissipation>)],
-    order: Option<f64>,
-) -> Result<Figure> {
-    let estar = s.fe.estar_mpa.get();
-    let taus: Vec<f64> = s.fe.tau_max_mpa.iter().map(|t| t.get()).collect();
-    let color_of_tau = |tau: f64| {
-        let i = taus.iter().position(|&t| t == tau).unwrap_or(0);
-        palette::CYCLE[i % palette::CYCLE.len()]
-    };
-    let main: Vec<_> = results
+/// One loop as solved: its case, its curve, its dissipation (none: it stopped short).
+type SolvedLoop<'a> = (&'a Loop, &'a FeOutcome, Option<Dissipation>);
+
+/// The colour of a shear strength, the same in every panel.
+fn color_of_tau(s: &HysteresisScene, tau: f64) -> RGBColor {
+    let i = s
+        .fe
+        .tau_max_mpa
         .iter()
-        .filter(|(l, _, _)| l.series == LoopSeries::AspectRatio)
-        .collect();
-    let fmt_w = |d: &Option<Dissipation>| match d {
+        .position(|t| t.get() == tau)
+        .unwrap_or(0);
+    palette::CYCLE[i % palette::CYCLE.len()]
+}
+
+/// A loop's dissipation in a legend.
+fn work_label(d: &Option<Dissipation>) -> String {
+    match d {
         None => "incomplete".to_string(),
         Some(d) if d.work.abs() <= CLOSURE_RTOL * d.loading_work => "W ≈ 0 (closes)".into(),
         Some(d) => format!(
             "W/W_load = {}",
             crate::accuracy::measured::percent(d.work / d.loading_work)
         ),
+    }
+}
+
+/// The panels: a p̄–a loop panel per aspect ratio, the dissipation against τ_max/E*, the p̄–δ
+/// loops of the largest aspect ratio, and the confinement loops.
+fn figure_panels(s: &HysteresisScene, results: &[SolvedLoop]) -> Vec<Panel> {
+    let estar = s.fe.estar_mpa.get();
+    let main: Vec<&SolvedLoop> = results
+        .iter()
+        .filter(|(l, _, _)| l.series == LoopSeries::AspectRatio)
+        .collect();
+    let at_ar = |ar: f64| {
+        main.iter()
+            .filter(move |(l, _, _)| l.case.problem.aspect_ratio == ar)
     };
     let mut panels = vec![];
-    // one p̄–a loop panel per aspect ratio
     for ar in s.aspect_ratios.iter().map(|a| a.get()) {
         let mut series = vec![];
-        for (l, o, d) in main.iter().filter(|(l, _, _)| l.case.problem.aspect_ratio == ar) {
+        for (l, o, d) in at_ar(ar) {
             let tau = l.case.tau_max_mpa;
-            let label = format!("τ_max/E* = {}: {}", tau / estar, fmt_w(d));
+            let label = format!("τ_max/E* = {}: {}", tau / estar, work_label(d));
             series.extend(loop_series(
                 Some(label),
-                color_of_tau(tau),
+                color_of_tau(s, tau),
                 branch_points(o, |p| p.a_over_lambda),
             ));
         }
         panels.push(loop_panel(format!("AR = {ar}: p̄–a loops"), "a/λ", series));
     }
-    // dissipation against τ_max/E*, one line per aspect ratio
-    let mut series = vec![];
-    for (i, ar) in s.aspect_ratios.iter().map(|a| a.get()).enumerate() {
-        let pts: Vec<(f64, f64)> = main
-            .iter()
-            .filter(|(l, _, _)| l.case.problem.aspect_ratio == ar)
-            .filter_map(|(l, _, d)| Some((l.case.tau_max_mpa / estar, d.as_ref()?.work)))
-            .collect();
-        let color = palette::CYCLE[i % palette::CYCLE.len()];
-        series.push(Series::line(Some(format!("AR = {ar}")), color, 2, pts.clone()));
-        series.push(Series::markers(None, color, 4, pts));
-    }
-    let x_max = taus.iter().fold(0.0_f64, |m, &t| m.max(t / estar));
-    let mut mesh_note = None;
-    if let Some(order) = order {
-        let largest = main
-            .iter()
-            .filter_map(|(_, _, d)| {
-                let d = d.as_ref()?;
-                Some((d.coarse?.1 - d.work).abs() / d.loading_work)
-            })
-            .fold(0.0_f64, f64::max);
-        mesh_note = Some(format!(
-            "Mesh error of W (Richardson from the next coarser mesh, order {order:.2}): at most {} of the loading work over the aspect-ratio loops; per loop in the dissipation table.",
-            crate::accuracy::measured::percent(largest)
-        ));
-    }
-    panels.push(Panel {
-        title: "Dissipated energy per cycle".into(),
-        x_label: "τ_max/E*".into(),
-        y_label: "W/(E* λ²)".into(),
-        x_range: (0.0, x_max.max(f64::MIN_POSITIVE)),
-        y_range: padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1))),
-        series,
-        notes: vec![],
-        log_scale: (false, false),
-        legend: Some(LegendPosition::UpperRight),
-    });
+    panels.push(dissipation_panel(s, &main));
     // the p̄–δ loops of the largest aspect ratio: their area is W
     let ar_max = s
         .aspect_ratios
@@ -459,11 +445,10 @@ fn figure(
         .fold(0.0_f64, f64::max);
     let mut series = vec![];
     // colours as in the p̄–a panels: no second legend
-    for (l, o, _) in main.iter().filter(|(l, _, _)| l.case.problem.aspect_ratio == ar_max) {
-        let tau = l.case.tau_max_mpa;
+    for (l, o, _) in at_ar(ar_max) {
         series.extend(loop_series(
             None,
-            color_of_tau(tau),
+            color_of_tau(s, l.case.tau_max_mpa),
             branch_points(o, |p| p.slab_displacement_over_lambda),
         ));
     }
@@ -475,34 +460,79 @@ fn figure(
             series,
         )
     });
-    // confinement: p̄–δ loops per layer thickness
     if let Some(c) = &s.confinement {
-        let mut series = vec![];
-        let conf = results.iter().filter(|(l, _, _)| l.series == LoopSeries::Confinement);
-        for (i, (l, o, d)) in conf.enumerate() {
-            series.extend(loop_series(
-                Some(format!(
-                    "h/λ = {}: {}",
-                    l.case.problem.thickness_over_lambda,
-                    fmt_w(d)
-                )),
-                palette::CYCLE[i % palette::CYCLE.len()],
-                branch_points(o, |p| p.slab_displacement_over_lambda),
-            ));
-        }
-        panels.push(loop_panel(
-            format!(
-                "Confinement: AR = {}, τ_max/E* = {}, to p̄/E* = {}",
-                c.aspect_ratio.get(),
-                c.tau_max_mpa.get() / estar,
-                c.until_p_over_estar.get()
-            ),
-            "δ/λ",
-            series,
+        panels.push(confinement_panel(c, estar, results));
+    }
+    panels
+}
+
+/// The dissipation against τ_max/E*, one line per aspect ratio.
+fn dissipation_panel(s: &HysteresisScene, main: &[&SolvedLoop]) -> Panel {
+    let estar = s.fe.estar_mpa.get();
+    let mut series = vec![];
+    for (i, ar) in s.aspect_ratios.iter().map(|a| a.get()).enumerate() {
+        let pts: Vec<(f64, f64)> = main
+            .iter()
+            .filter(|(l, _, _)| l.case.problem.aspect_ratio == ar)
+            .filter_map(|(l, _, d)| Some((l.case.tau_max_mpa / estar, d.as_ref()?.work)))
+            .collect();
+        let color = palette::CYCLE[i % palette::CYCLE.len()];
+        series.push(Series::line(Some(format!("AR = {ar}")), color, 2, pts.clone()));
+        series.push(Series::markers(None, color, 4, pts));
+    }
+    let x_max = s
+        .fe
+        .tau_max_mpa
+        .iter()
+        .fold(0.0_f64, |m, t| m.max(t.get() / estar));
+    Panel {
+        title: "Dissipated energy per cycle".into(),
+        x_label: "τ_max/E*".into(),
+        y_label: "W/(E* λ²)".into(),
+        x_range: (0.0, x_max.max(f64::MIN_POSITIVE)),
+        y_range: padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1))),
+        series,
+        notes: vec![],
+        log_scale: (false, false),
+        legend: Some(LegendPosition::UpperRight),
+    }
+}
+
+/// The confinement series: p̄–δ loops per layer thickness.
+fn confinement_panel(c: &Confinement, estar_mpa: f64, results: &[SolvedLoop]) -> Panel {
+    let mut series = vec![];
+    let conf = results
+        .iter()
+        .filter(|(l, _, _)| l.series == LoopSeries::Confinement);
+    for (i, (l, o, d)) in conf.enumerate() {
+        series.extend(loop_series(
+            Some(format!(
+                "h/λ = {}: {}",
+                l.case.problem.thickness_over_lambda,
+                work_label(d)
+            )),
+            palette::CYCLE[i % palette::CYCLE.len()],
+            branch_points(o, |p| p.slab_displacement_over_lambda),
         ));
     }
-    let columns = 3;
-    let rows = panels.len().div_ceil(columns);
+    loop_panel(
+        format!(
+            "Confinement: AR = {}, τ_max/E* = {}, to p̄/E* = {}",
+            c.aspect_ratio.get(),
+            c.tau_max_mpa.get() / estar_mpa,
+            c.until_p_over_estar.get()
+        ),
+        "δ/λ",
+        series,
+    )
+}
+
+/// The footer: what the loops are, what W is, and the mesh error of W when estimated.
+fn footer(s: &HysteresisScene, results: &[SolvedLoop], order: Option<f64>) -> Result<Vec<String>> {
+    let main: Vec<&SolvedLoop> = results
+        .iter()
+        .filter(|(l, _, _)| l.series == LoopSeries::AspectRatio)
+        .collect();
     let case = &main
         .first()
         .map(|(l, _, _)| &l.case)
@@ -510,32 +540,31 @@ fn figure(
     let (nx, ny) = case.options.mesh.counts();
     let mut footer = vec![
         format!(
-            "Solid: loading to a/λ = {}; dashed: unloading to zero load (slip history carried through). Finite strain, neo-Hookean κ/G = {}, h/λ = {} (but in the confinement panel), E* = {estar} MPa, μ = {}, mesh {nx}×{ny}.",
+            "Solid: loading to a/λ = {}; dashed: unloading to zero load (slip history carried through). Finite strain, neo-Hookean κ/G = {}, h/λ = {} (but in the confinement panel), E* = {} MPa, μ = {}, mesh {nx}×{ny}.",
             s.fe.until_a_over_lambda.get(),
             s.fe.kappa_over_g.get(),
             s.fe.thickness_over_lambda.get(),
+            s.fe.estar_mpa.get(),
             s.fe.friction_coefficient.get()
         ),
         format!(
             "W = ∮ p̄ dδ/(E* λ²), the energy dissipated per cycle, per wavelength and unit ridge length. Checked on every loop: frictionless loops close and no loop creates energy, within {CLOSURE_RTOL:e} of the loading work W_load."
         ),
     ];
-    footer.extend(mesh_note);
-    let stopped = results.iter().filter(|(_, _, d)| d.is_none()).count();
-    if stopped > 0 {
+    if let Some(order) = order {
+        let largest = main
+            .iter()
+            .filter_map(|(_, _, d)| {
+                let d = d.as_ref()?;
+                Some((d.coarse?.1 - d.work).abs() / d.loading_work)
+            })
+            .fold(0.0_f64, f64::max);
         footer.push(format!(
-            "INCOMPLETE loops ({stopped}): labelled `incomplete`, drawn as far as they got; see the status column of the dissipation table."
+            "Mesh error of W (Richardson from the next coarser mesh, order {order:.2}): at most {} of the loading work over the aspect-ratio loops; per loop in the dissipation table.",
+            crate::accuracy::measured::percent(largest)
         ));
     }
-    Ok(Figure {
-        width: 430 * columns as u32,
-        height: 430 * rows as u32 + 150,
-        caption: title.into(),
-        grid: (rows, columns),
-        panels,
-        footer,
-        font_px: 15,
-    })
+    Ok(footer)
 }
 
 fn loop_panel(title: String, x_label: &str, series: Vec<Series>) -> Panel {
