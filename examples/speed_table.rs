@@ -13,8 +13,8 @@
 //!
 //! Run: `make bench` (after a release build; `--wavy` names the binary of step 2).
 //! `--no-branch-switch` measures steps 1 and 3 without the semismooth choice of the
-//! friction branches (`SolveOptions::semismooth_friction` off): the same build, before
-//! and after that change.
+//! friction branches (`SolveOptions::semismooth_friction` off): the same build with and
+//! without it.
 use std::path::PathBuf;
 use std::time::Instant;
 #[path = "../benches/common/mod.rs"]
