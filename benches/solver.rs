@@ -1,5 +1,5 @@
 //! Time per full load curve (first contact to a/λ = 0.45) at each mesh level and at
-//! 64 × 32 (the default before the mesh was chosen by the 0.5 % tolerance), finite
+//! 64 × 32 (a level between default and fine), finite
 //! kinematics, AR = 0.1 and AR = 0.3, κ/G = 1000; the linear curve at the default mesh
 //! (AR = 0.1); and frictional curves at the default mesh (μ = 1, τ_max/E* = 0.2, the
 //! costliest panels of Fig. 3). Before the timings, the peak memory of one curve per AR

@@ -1,9 +1,9 @@
 //! The Newton work of the Fig. 3 curves: the finite-element cases of
 //! `experiments/fig3_fe_vs_model.toml` (3 aspect ratios × 6 shear strengths, the spec's
 //! physics and mesh, built by the runner as for the figure), per curve the tangent
-//! assemblies and factorisations of every attempt, and their totals: the counts the README's
-//! "Frictional speed" section compares solver changes by (deterministic, unlike wall times
-//! on a noisy machine).
+//! assemblies and factorisations of every attempt, and their totals: the counts
+//! docs/performance.md compares solver changes by (deterministic, unlike wall times on a
+//! noisy machine).
 //!
 //! Run: `cargo run --release --example fig3_work [-- --no-branch-switch] [-- --points FILE]`.
 //! `--no-branch-switch` turns the semismooth choice of the friction branches off

@@ -1,4 +1,4 @@
-//! The frictional-speed table of `make bench` (README, "Frictional speed"):
+//! The frictional-speed table of `make bench` (docs/performance.md):
 //!
 //! 1. per-curve wall time (median of `--runs` runs, one thread), DOFs, load steps, Newton
 //!    iterations on the converged path, tangent assemblies and factorisations of every
@@ -13,15 +13,15 @@
 //!
 //! Run: `make bench` (after a release build; `--wavy` names the binary of step 2).
 //! `--no-branch-switch` measures steps 1 and 3 without the semismooth choice of the
-//! friction branches (`SolveOptions::semismooth_friction` off): the same build, before
-//! and after that change.
+//! friction branches (`SolveOptions::semismooth_friction` off): the same build with and
+//! without it.
 use std::path::PathBuf;
 use std::time::Instant;
 #[path = "../benches/common/mod.rs"]
 mod common;
 use common::peak_memory_kb;
 use wavy::fe::{solve_curve, Curve, Interface, Kinematics, LayerProblem, MeshLevel, SolveOptions};
-use wavy::runner::tier_timings::median;
+use wavy::runner::time_tiers::median;
 
 const CHILD: &str = "WAVY_SPEED_TABLE_CHILD";
 

@@ -105,7 +105,7 @@ pub struct FeSection {
     pub tolerance: Option<Bounded<Positive>>,
     /// Also solve each curve on the next coarser mesh and report the Richardson estimate of its
     /// relative error (a column `error_estimate` and a note per panel; order measured by the
-    /// speed_accuracy scene). Doubles about a third of the cost.
+    /// speed_accuracy scene). Adds the cost of the coarser curves.
     #[serde(default)]
     pub error_estimate: bool,
     /// Load until a/λ reaches this value, in (0, 0.5).

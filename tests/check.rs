@@ -93,7 +93,7 @@ fn specs_take_the_physical_defaults_from_one_place() {
         ] {
             assert!(
                 !text.lines().any(|l| l.starts_with(field)),
-                "{name}.toml pins `{field}`: say why in the README or let the default apply"
+                "{name}.toml pins `{field}`: say why in docs/replication.md or let the default apply"
             );
         }
     }

@@ -117,10 +117,9 @@ fn curve_with(ar: f64, tau_max_over_estar: f64, opts: &SolveOptions) -> Curve {
 /// (`SolveOptions::semismooth_friction`, on by default) changes the path to each
 /// equilibrium, not the equilibrium: at AR 0.3, τ_max/E* 0.2 (coarse mesh, to a/λ 0.4)
 /// every point of the curve with it matches the curve without it to 10⁻⁸ relative (the
-/// Newton tolerance is 10⁻¹⁰ of the nodal forces; measured over the 18 Fig. 3 curves on the
-/// default mesh: at most 7.7·10⁻⁹; this test prints its own), and it needs fewer Newton
-/// iterations and tangent assemblies (counted, deterministic; measured here: 379 against
-/// 649 iterations, 452 against 917 assemblies).
+/// Newton tolerance is 10⁻¹⁰ of the nodal forces; this test prints the largest difference),
+/// and it needs fewer Newton iterations and tangent assemblies (counted, deterministic; the
+/// counts it prints are recorded in docs/performance.md).
 #[test]
 fn semismooth_branch_choice_changes_the_path_not_the_curve() {
     let opts = |semismooth_friction| SolveOptions {
@@ -167,9 +166,10 @@ fn a_values() -> Vec<f64> {
 }
 
 /// Issue #4, 2 (ii): in the linear limit (AR = 0.01, κ/G = 1000) friction changes p̄(a) by less
-/// than 0.5 %: linear theory has no normal–tangential coupling for an incompressible solid on a
+/// than 0.2 %: linear theory has no normal–tangential coupling for an incompressible solid on a
 /// rigid indenter (R4), so the strongest friction of the sweep (μ = 1, τ_max/E* = 0.2) must be
-/// nearly idle. Same mesh for both curves, so discretisation errors cancel. Measured: ≤ 0.09 %.
+/// nearly idle. Same mesh for both curves, so discretisation errors cancel. Measured: at most
+/// 0.096 % (at a/λ = 0.1); asserted < 0.2 %, about twice that.
 #[test]
 fn friction_is_idle_in_the_linear_limit() {
     let free = wavy_curve(0.01, 0.0, MeshLevel::Coarse);
@@ -179,7 +179,7 @@ fn friction_is_idle_in_the_linear_limit() {
         let effect = p1 / p0 - 1.0;
         eprintln!("AR 0.01 a {a:.2}: friction effect {:.4} %", 100.0 * effect);
         assert!(
-            effect.abs() < 0.005,
+            effect.abs() < 0.002,
             "a {a}: friction changes p̄ by {effect}"
         );
     }
@@ -190,8 +190,8 @@ fn friction_is_idle_in_the_linear_limit() {
 /// the default (48×24) mesh is bounded by the Richardson estimate from its difference to the
 /// coarse (32×16) one at order 1, which over-estimates it for any convergence order ≥ 1
 /// (e₂ = |f₁ − f₂|/(ρ^q − 1), ρ = 1.5); the effect must exceed five times that bound wherever
-/// friction matters (a/λ ≥ 0.2), and both numbers are printed. Measured numbers are in the
-/// README.
+/// friction matters (a/λ ≥ 0.2), and both numbers are printed (recorded in
+/// docs/verification.md).
 #[test]
 fn friction_effect_at_ar_0_3_is_resolved_above_discretisation_error() {
     let curves = |mesh| (wavy_curve(0.3, 0.0, mesh), wavy_curve(0.3, 0.2, mesh));

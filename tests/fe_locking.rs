@@ -46,7 +46,8 @@ fn linear_curve_does_not_lock_from_kappa_10_to_10000() {
 }
 
 /// Finite kinematics, AR = 0.1, coarse mesh: κ/G = 10³ and 10⁴ (both nearly
-/// incompressible) must give the same curve within 0.5 %.
+/// incompressible) must give the same curve: measured within 0.090 %, asserted within 0.25 %
+/// (about three times that).
 #[test]
 fn finite_curve_is_insensitive_to_kappa_near_incompressibility() {
     let a = curve(1e3, Kinematics::Finite, 0.1, MeshLevel::Coarse);
@@ -54,7 +55,7 @@ fn finite_curve_is_insensitive_to_kappa_near_incompressibility() {
     let mut worst = 0.0_f64;
     for x in [0.1, 0.2, 0.3, 0.4] {
         let (pa, pb) = (a.p_at(x).unwrap(), b.p_at(x).unwrap());
-        assert!((pa / pb - 1.0).abs() <= 0.005, "a {x}: {pa} vs {pb}");
+        assert!((pa / pb - 1.0).abs() <= 0.0025, "a {x}: {pa} vs {pb}");
         worst = worst.max((pa / pb - 1.0).abs());
     }
     eprintln!(

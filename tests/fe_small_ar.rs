@@ -1,8 +1,12 @@
 //! Finite kinematics tends to the linear answer as AR → 0 (requirement (iii)): at
 //! AR = 0.001 the two curves, on the same mesh (so that discretisation errors cancel),
-//! agree within 0.5 % at fixed a/λ ∈ [0.1, 0.45]. Reference: the linear solver itself,
-//! which matches Westergaard (tests/fe_westergaard.rs).
+//! agree at fixed a/λ ∈ [0.1, 0.45]. Measured: largest |finite/linear − 1| = 0.0016 %;
+//! asserted ≤ 0.005 %, about three times the measured value.
+//! Reference: the linear solver itself, which matches Westergaard (tests/fe_westergaard.rs).
 use wavy::fe::*;
+
+/// Largest |finite/linear − 1| allowed (see the module docs): 0.005 %.
+const MAX_RELATIVE_DIFFERENCE: f64 = 5e-5;
 
 #[test]
 fn finite_tends_to_linear_at_small_aspect_ratio() {
@@ -27,7 +31,7 @@ fn finite_tends_to_linear_at_small_aspect_ratio() {
             lin.p_at(a).expect("in range"),
         );
         assert!(
-            (pf / pl - 1.0).abs() <= 0.005,
+            (pf / pl - 1.0).abs() <= MAX_RELATIVE_DIFFERENCE,
             "a {a}: finite {pf} vs linear {pl}"
         );
         worst = worst.max((pf / pl - 1.0).abs());

@@ -30,14 +30,15 @@ fn max_error(kappa_over_g: f64) -> (f64, usize) {
     (worst, count)
 }
 
-/// Requirement (i): max relative error ≤ 1 % on a/λ ∈ [0.1, 0.45], default mesh.
+/// Requirement (i) asks for a max relative error ≤ 1 % on a/λ ∈ [0.1, 0.45], default mesh.
+/// Measured: 0.198 %; asserted ≤ 0.5 %, about two and a half times that.
 #[test]
-fn linear_matches_westergaard_within_one_percent() {
+fn linear_matches_westergaard_within_half_a_percent() {
     let (worst, count) = max_error(1000.0);
     eprintln!(
         "linear, AR 0.01, default mesh: max relative error vs Westergaard {:.3} % over {count} points",
         100.0 * worst
     );
     assert!(count >= 20, "only {count} points in range");
-    assert!(worst <= 0.01, "max relative error {worst}");
+    assert!(worst <= 0.005, "max relative error {worst}");
 }

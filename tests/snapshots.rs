@@ -1,7 +1,8 @@
 //! Pins every experiment's numbers and figure: one snapshot per spec for each CSV table (numbers
 //! through the shared six-significant-digit formatter, `wavy::numfmt`) and one for its SVG.
 //! Finite-element sections run at the spec's mesh (the coarse mesh fails at AR = 0.3) and with a fresh
-//! cache, so the snapshots pin the solver itself, not a cache. The specs in [`HEAVY_SPECS`] take
+//! cache (a temporary folder: no test reads or writes the developer's `.wavy-cache/`), so the
+//! snapshots pin the solver itself, not a cache. The specs in [`HEAVY_SPECS`] take
 //! tens of minutes (meshes up to 144 elements along the face): make test pins a test-size run of
 //! each (`tests/speed_accuracy.rs`), and CI's `make stale` recomputes them in full and compares
 //! with the committed figures. A snapshot only says "did our
@@ -49,12 +50,16 @@ fn experiment_outputs() {
     });
 }
 
+/// The first run computes its FE curves into an empty cache, the second reads them back: the
+/// outputs are the same bytes either way.
 #[test]
 fn outputs_are_byte_identical_across_runs() {
     let spec =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("experiments/fig5_warman_ennos.toml");
-    let a = run_spec_file(&spec, &RunOptions::default()).unwrap();
-    let b = run_spec_file(&spec, &RunOptions::default()).unwrap();
+    let cache = tempfile::tempdir().unwrap();
+    let opts = test_options(cache.path());
+    let a = run_spec_file(&spec, &opts).unwrap();
+    let b = run_spec_file(&spec, &opts).unwrap();
     assert_eq!(a.svg, b.svg);
     assert_eq!(a.tables, b.tables);
 }

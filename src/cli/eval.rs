@@ -3,6 +3,7 @@
 use super::input::{non_negative, one_of, out_of_range, positive, InputError};
 use anyhow::{Context, Result};
 use std::io::Write;
+use wavy::accuracy::Tier;
 use wavy::models::{
     a_over_lambda_at, CoefficientSet, InverseError, ModelKind, ModelLaw, PressureLaw, Reading,
 };
@@ -52,7 +53,19 @@ pub fn eval(args: &EvalArgs, out: &mut impl Write) -> Result<()> {
     positive("--ar", args.ar)?;
     non_negative("--tau-max-mpa", args.tau_max_mpa)?;
     if let Some(tolerance) = args.tolerance {
-        return super::tolerance::eval(args, tolerance, out);
+        let e = super::tolerance::eval(args.ar, args.tau_max_mpa, &args.a_over_lambda, tolerance)?;
+        let (reading, coefficients) = match e.tier {
+            Tier::Wnl(set) => (e.tier.reading().name(), set.name()),
+            _ => ("", ""),
+        };
+        return write_rows(
+            out,
+            &e.tier.to_string(),
+            reading,
+            coefficients,
+            args,
+            &e.rows,
+        );
     }
     let model = args
         .model
@@ -85,7 +98,7 @@ pub fn eval(args: &EvalArgs, out: &mut impl Write) -> Result<()> {
         let p = law
             .physical_p_over_estar(x)
             .with_context(|| format!("{inputs} --a-over-lambda {x:?}"))?;
-        rows.push((x, p));
+        rows.push((x, p, law.is_extrapolated()));
     }
     for &p in &args.p_over_estar {
         let full = law.full_contact_p_over_estar();
@@ -112,17 +125,27 @@ pub fn eval(args: &EvalArgs, out: &mut impl Write) -> Result<()> {
                 .into(),
             }
         })?;
-        rows.push((x, p));
+        rows.push((x, p, law.is_extrapolated()));
     }
+    write_rows(out, model.key(), reading, coefficients, args, &rows)
+}
+
+/// Writes the CSV of `wavy eval`: [`HEADER`], then one line per (a/λ, p̄/E*, extrapolated) of
+/// `rows`, evaluated by `law` (a model key or a tier name).
+fn write_rows(
+    out: &mut impl Write,
+    law: &str,
+    reading: &str,
+    coefficients: &str,
+    args: &EvalArgs,
+    rows: &[(f64, f64, bool)],
+) -> Result<()> {
     writeln!(out, "{HEADER}")?;
-    for (x, p) in rows {
+    for (x, p, extrapolated) in rows {
         writeln!(
             out,
-            "{},{reading},{coefficients},{},{},{x},{p},{}",
-            model.key(),
-            args.ar,
-            args.tau_max_mpa,
-            law.is_extrapolated()
+            "{law},{reading},{coefficients},{},{},{x},{p},{extrapolated}",
+            args.ar, args.tau_max_mpa
         )?;
     }
     Ok(())

@@ -45,7 +45,7 @@ pub struct SolveArgs {
     pub tolerance: Option<f64>,
     /// Also solve the next coarser mesh (1.5 times fewer elements) and add the column
     /// error_estimate: the Richardson estimate of each point's relative error, with the
-    /// convergence order measured by the speed_accuracy scene (README, "Speed and accuracy");
+    /// convergence order measured by the speed_accuracy scene (docs/results.md);
     /// empty below the coarser curve's first contact point.
     #[arg(long)]
     pub error_estimate: bool,

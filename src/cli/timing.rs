@@ -5,7 +5,7 @@ use super::input::InputError;
 use anyhow::{Context, Result};
 use std::io::Write;
 use std::path::PathBuf;
-use wavy::runner::{load_spec, tier_timings, write_atomic};
+use wavy::runner::{load_spec, write_atomic};
 
 /// Arguments of `wavy time-tiers`.
 #[derive(Debug, Clone, clap::Args)]
@@ -49,7 +49,7 @@ pub fn time_tiers(args: &TimeTiersArgs, out: &mut impl Write) -> Result<()> {
             value: args.spec.display().to_string(),
             reason: "not a [speed_accuracy] spec".into(),
         })?;
-    let timings = tier_timings::measure(scene, args.runs, &machine(), &mut |line| {
+    let timings = wavy::runner::time_tiers::measure(scene, args.runs, &machine(), &mut |line| {
         eprintln!("{line}")
     })?;
     write_atomic(&args.out, timings.to_text().as_bytes())

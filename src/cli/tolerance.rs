@@ -2,10 +2,8 @@
 //! the committed speed–accuracy measurements (`wavy::accuracy::measured`), for `wavy eval`
 //! (any tier) and `wavy solve` (the coarsest finite-strain mesh).
 
-use super::eval::{EvalArgs, HEADER};
 use super::input::{out_of_range, InputError};
 use anyhow::{Context, Result};
-use std::io::Write;
 use wavy::accuracy::measured::{self, percent, Choice, ChoiceError, Query};
 use wavy::accuracy::Tier;
 use wavy::fe::{self, Kinematics, MeshLevel};
@@ -71,10 +69,22 @@ fn announce(choice: &Choice, tolerance: f64) {
     );
 }
 
-/// `wavy eval --tolerance`: the forward evaluation by the cheapest qualifying tier.
-pub fn eval(args: &EvalArgs, tolerance: f64, out: &mut impl Write) -> Result<()> {
+/// What `wavy eval --tolerance` evaluated: the tier chosen and its (a/λ, p̄/E*, extrapolated)
+/// rows.
+pub struct TierEvaluation {
+    pub tier: Tier,
+    pub rows: Vec<(f64, f64, bool)>,
+}
+
+/// `wavy eval --tolerance`: the forward evaluation at (AR, τ_max in MPa) of every a/λ of `xs` by
+/// the cheapest tier whose measured error meets `tolerance`.
+pub fn eval(
+    aspect_ratio: f64,
+    tau_max_mpa: f64,
+    xs: &[f64],
+    tolerance: f64,
+) -> Result<TierEvaluation> {
     check_tolerance(tolerance)?;
-    let xs = &args.a_over_lambda;
     for &x in xs {
         if !(x.is_finite() && (0.0..=0.5).contains(&x)) {
             return Err(out_of_range("--a-over-lambda", x, "[0, 0.5]").into());
@@ -84,8 +94,8 @@ pub fn eval(args: &EvalArgs, tolerance: f64, out: &mut impl Write) -> Result<()>
     let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let physics = FePhysics::default();
     let query = Query {
-        aspect_ratio: args.ar,
-        tau_max_mpa: args.tau_max_mpa,
+        aspect_ratio,
+        tau_max_mpa,
         a_over_lambda: (lo, hi),
         physics: &physics.by_column(),
     };
@@ -96,15 +106,10 @@ pub fn eval(args: &EvalArgs, tolerance: f64, out: &mut impl Write) -> Result<()>
     announce(&choice, tolerance);
     let tier = choice.tier;
     let inputs = format!(
-        "--tolerance {tolerance} (tier {tier}) --ar {:?} --tau-max-mpa {:?}",
-        args.ar, args.tau_max_mpa
+        "--tolerance {tolerance} (tier {tier}) --ar {aspect_ratio:?} --tau-max-mpa {tau_max_mpa:?}"
     );
     let mut rows = vec![];
-    let (reading, coefficients) = match tier {
-        Tier::Wnl(set) => (tier.reading().name(), set.name()),
-        _ => ("", ""),
-    };
-    if let Some(law) = tier.law(args.ar, args.tau_max_mpa) {
+    if let Some(law) = tier.law(aspect_ratio, tau_max_mpa) {
         for &x in xs {
             let p = law
                 .physical_p_over_estar(x)
@@ -124,7 +129,7 @@ pub fn eval(args: &EvalArgs, tolerance: f64, out: &mut impl Write) -> Result<()>
             },
             ..physics
         };
-        let case = FeCase::new(&physics, args.ar, args.tau_max_mpa, options);
+        let case = FeCase::new(&physics, aspect_ratio, tau_max_mpa, options);
         let curve = fe::solve_curve(&case.problem, &case.options, &mut |_| {})
             .map_err(|f| anyhow::anyhow!("{inputs}: the solver stopped: {}", f.error))?;
         for &x in xs {
@@ -136,15 +141,7 @@ pub fn eval(args: &EvalArgs, tolerance: f64, out: &mut impl Write) -> Result<()>
             rows.push((x, p, false));
         }
     }
-    writeln!(out, "{HEADER}")?;
-    for (x, p, extrapolated) in rows {
-        writeln!(
-            out,
-            "{tier},{reading},{coefficients},{},{},{x},{p},{extrapolated}",
-            args.ar, args.tau_max_mpa
-        )?;
-    }
-    Ok(())
+    Ok(TierEvaluation { tier, rows })
 }
 
 /// `wavy solve --tolerance`: the coarsest finite-strain mesh whose measured error at this case

@@ -3,10 +3,12 @@
 //! aspect ratio (material sliding along the indenter, the valley closing).
 
 use super::fe_cases::{FeCase, FePhysics};
+use super::scene_output::{Layout, Remarks};
 use super::scenes::{Scene, SceneContext, SceneResult};
 use super::RunOptions;
 use crate::fe;
-use crate::plot::{palette, Figure, LegendPosition, Panel, Series};
+use crate::fe::{CurvePoint, DeformedState};
+use crate::plot::{palette, LegendPosition, Panel, Series};
 use crate::spec::{Bounded, FeSection, Positive, SpecError, Validator};
 use crate::table::Table;
 use anyhow::{anyhow, Result};
@@ -57,7 +59,6 @@ fn run(title: &str, s: &DeformedMeshScene, opts: &RunOptions) -> Result<SceneRes
         .last()
         .ok_or_else(|| anyhow!("the FE solve converged no load step"))?;
     let state = &curve.final_state;
-
     let mut table = Table::new(
         "",
         &["node", "x_over_lambda", "y_over_lambda", "p_over_estar"],
@@ -71,9 +72,37 @@ fn run(title: &str, s: &DeformedMeshScene, opts: &RunOptions) -> Result<SceneRes
             state.contact_pressure_over_estar[k].into(),
         ]);
     }
+    let panels = vec![mesh_panel(state, ar, &last), pressure_panel(state, &last)];
+    let (nx, ny) = case.options.mesh.counts();
+    let remarks = Remarks::with_footer(vec![format!(
+        "AR = {ar}, {:?} kinematics, neo-Hookean κ/G = {}, h/λ = {} (mesh {nx}×{ny}; only y/λ ≤ {:.2} shown). \
+         a/λ = {:.4}, p̄/E* = {:.5} (contact forces) / {:.5} (slab reaction).",
+        case.problem.kinematics,
+        s.fe.kappa_over_g.get(),
+        s.fe.thickness_over_lambda.get(),
+        mesh_y_range(ar).1,
+        last.a_over_lambda,
+        last.p_over_estar,
+        last.p_over_estar_reaction
+    )]);
+    let layout = Layout {
+        grid: (1, 2),
+        panel_px: (700, 1080),
+        margin_px: 0,
+        font_px: 18,
+    };
+    Ok(remarks.finish(title, layout, panels, vec![table]))
+}
 
-    // Panel 1: the mesh (grey), the indenter (black), the nodes in contact (vermilion).
-    let mut mesh_series: Vec<Series> = state
+/// The y/λ range of the mesh panel: from below the indenter's valley, 0.75 high.
+fn mesh_y_range(ar: f64) -> (f64, f64) {
+    let y_lo = -2.0 * ar - 0.02;
+    (y_lo, y_lo + 0.75)
+}
+
+/// The mesh (grey), the indenter (black), the nodes in contact (vermilion).
+fn mesh_panel(state: &DeformedState, ar: f64, last: &CurvePoint) -> Panel {
+    let mut series: Vec<Series> = state
         .quads
         .iter()
         .map(|q| {
@@ -90,7 +119,7 @@ fn run(title: &str, s: &DeformedMeshScene, opts: &RunOptions) -> Result<SceneRes
         .map(|i| 0.5 * i as f64 / 200.0)
         .map(|x| (x, indenter.y(x)))
         .collect();
-    mesh_series.push(Series::line(
+    series.push(Series::line(
         Some("rigid indenter".into()),
         palette::BLACK,
         3,
@@ -103,26 +132,27 @@ fn run(title: &str, s: &DeformedMeshScene, opts: &RunOptions) -> Result<SceneRes
         .filter(|(_, &touching)| touching)
         .map(|(&i, _)| (state.nodes[i][0], state.nodes[i][1]))
         .collect();
-    mesh_series.push(Series::markers(
+    series.push(Series::markers(
         Some("nodes in contact".into()),
         palette::VERMILION,
         3,
         in_contact,
     ));
-    let y_lo = -2.0 * ar - 0.02;
-    let mesh_panel = Panel {
+    Panel {
         title: format!("deformed mesh at a/λ = {:.3}", last.a_over_lambda),
         x_label: "x/λ".into(),
         y_label: "y/λ".into(),
         x_range: (0.0, 0.5),
-        y_range: (y_lo, y_lo + 0.75),
-        series: mesh_series,
+        y_range: mesh_y_range(ar),
+        series,
         notes: vec![],
         log_scale: (false, false),
         legend: Some(LegendPosition::UpperRight),
-    };
+    }
+}
 
-    // Panel 2: the contact pressure along the deformed face.
+/// The contact pressure along the deformed face, with the mean.
+fn pressure_panel(state: &DeformedState, last: &CurvePoint) -> Panel {
     let pressure: Vec<(f64, f64)> = state
         .bottom
         .iter()
@@ -130,7 +160,7 @@ fn run(title: &str, s: &DeformedMeshScene, opts: &RunOptions) -> Result<SceneRes
         .map(|(&i, &p)| (state.nodes[i][0], p))
         .collect();
     let p_max = pressure.iter().map(|p| p.1).fold(0.0_f64, f64::max);
-    let pressure_panel = Panel {
+    Panel {
         title: "contact pressure along the deformed face".into(),
         x_label: "current x/λ".into(),
         y_label: "p/E*".into(),
@@ -154,32 +184,5 @@ fn run(title: &str, s: &DeformedMeshScene, opts: &RunOptions) -> Result<SceneRes
         notes: vec![],
         log_scale: (false, false),
         legend: Some(LegendPosition::UpperRight),
-    };
-    let (nx, ny) = case.options.mesh.counts();
-    let footer = vec![format!(
-        "AR = {ar}, {:?} kinematics, neo-Hookean κ/G = {}, h/λ = {} (mesh {nx}×{ny}; only y/λ ≤ {:.2} shown). \
-         a/λ = {:.4}, p̄/E* = {:.5} (contact forces) / {:.5} (slab reaction).",
-        case.problem.kinematics,
-        s.fe.kappa_over_g.get(),
-        s.fe.thickness_over_lambda.get(),
-        y_lo + 0.75,
-        last.a_over_lambda,
-        last.p_over_estar,
-        last.p_over_estar_reaction
-    )];
-    let figure = Figure {
-        width: 1400,
-        height: 1080,
-        caption: title.into(),
-        grid: (1, 2),
-        panels: vec![mesh_panel, pressure_panel],
-        footer,
-        font_px: 18,
-    };
-    Ok(SceneResult {
-        tables: vec![table],
-        figure,
-        notes: vec![],
-        incomplete: vec![],
-    })
+    }
 }

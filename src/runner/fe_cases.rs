@@ -62,6 +62,30 @@ pub fn solve_all(cases: &[FeCase], opts: &RunOptions) -> Result<Vec<FeOutcome>> 
         .collect())
 }
 
+/// FE cases and their curves, in the cases' order.
+#[derive(Debug, Clone)]
+pub struct SolvedCases {
+    pub cases: Vec<FeCase>,
+    pub outcomes: Vec<FeOutcome>,
+}
+
+impl SolvedCases {
+    /// Every case's curve, from the cache or computed ([`solve_all`]).
+    pub fn solve(cases: Vec<FeCase>, opts: &RunOptions) -> Result<Self> {
+        let outcomes = solve_all(&cases, opts)?;
+        Ok(SolvedCases { cases, outcomes })
+    }
+
+    /// The curve of `case`, one of the cases (equal in every field).
+    pub fn outcome(&self, case: &FeCase) -> Option<&FeOutcome> {
+        self.cases
+            .iter()
+            .zip(&self.outcomes)
+            .find(|(c, _)| *c == case)
+            .map(|(_, o)| o)
+    }
+}
+
 /// This shard's share of `cases`, computed into the cache: (computed, already cached).
 pub fn compute_share(cases: &[FeCase], opts: &RunOptions) -> Result<(usize, usize)> {
     let r = sweep::run(cases, &opts.sweep, FeCase::solve)?;
@@ -152,7 +176,7 @@ impl FeSection {
 
 /// One FE curve: the physical problem, the numerical options, and the modulus that turns
 /// τ_max in MPa into τ_max/E*.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct FeCase {
     pub problem: LayerProblem,
     pub options: SolveOptions,
@@ -245,9 +269,8 @@ impl SweepCase for FeCase {
         )
     }
 
-    /// Measured on the default mesh: the time of a curve grows with the aspect ratio and
-    /// with friction (about 2.5 s at AR = 0.1 frictionless, 7 s at AR = 0.3, 8 s and 26 s
-    /// with τ_max/E* = 0.2), and with the element count.
+    /// The time of a curve grows with the element count, the aspect ratio and friction (the
+    /// times per curve: docs/performance.md); only the order of the cases matters.
     fn cost_hint(&self) -> f64 {
         let (nx, ny) = self.options.mesh.counts();
         let friction = match self.problem.interface {
@@ -267,6 +290,24 @@ pub struct FeOutcome {
     pub unloading: Vec<CurvePoint>,
     /// The solver's error when it stopped before the target a/λ.
     pub failure: Option<String>,
+}
+
+impl FeOutcome {
+    /// The a/λ of the curve's last point (0 for an empty curve).
+    pub fn last_a_over_lambda(&self) -> f64 {
+        self.points.last().map_or(0.0, |p| p.a_over_lambda)
+    }
+
+    /// `complete`, or `incomplete at a/λ = …: <reason>` for a curve that stopped short.
+    pub fn status(&self) -> String {
+        match &self.failure {
+            None => "complete".into(),
+            Some(f) => format!(
+                "incomplete at a/λ = {}: {f}",
+                crate::numfmt::sig_digits(self.last_a_over_lambda(), 4)
+            ),
+        }
+    }
 }
 
 /// The line of the cache text between the loading and the unloading rows.

@@ -6,246 +6,27 @@
 //! law as the paper uses it (τ_max in MPa) and the WNL law read as a law of τ_max/E* (the
 //! polynomials evaluated at τ_max/E* × E*_fit). A table gives each law's largest and
 //! root-mean-square relative error against the FE curve on a grid of a/λ.
-//!
-//! This module also holds what Fig. 5 (`fingertip_area`) shares with it: the FE table
-//! [`FingertipFe`], the ridge geometry check, the τ_max/E* law, the words for an extrapolation,
-//! and the inverse a(p̄) of an FE curve.
 
-use super::fe_cases::{self, FeCase, FeOutcome, FePhysics};
+use super::fe_cases::{self, FeCase, FeOutcome};
+use super::fingertip_ridges::{ridge_aspect_ratio, FingertipFe};
+use super::scene_output::{incomplete_panel_note, Layout, Remarks};
 use super::scenes::{Scene, SceneContext, SceneResult};
+use super::wnl_beyond_fit::{fit_estar_mpa, outside_fit, wnl_tau_over_estar};
 use super::RunOptions;
 use crate::accuracy::measured::percent;
-use crate::accuracy::relative_errors;
-use crate::defaults;
+use crate::accuracy::{relative_errors, ErrorSummary};
 use crate::fe::convergence::p_at;
-use crate::fe::{CurvePoint, Kinematics, MeshLevel, SolveOptions};
 use crate::models::{ModelKind, ModelLaw, PressureLaw};
 use crate::numfmt::sig_digits;
-use crate::plot::{palette, Figure, Panel, Series};
+use crate::plot::{palette, Panel, Series};
 use crate::spec::{
-    mesh_from_name, Bounded, Grid, ModelSelection, NonNegative, OpenHalfWidth, Positive,
-    SpecError, Validator, A_OVER_LAMBDA_ALLOWED,
+    Bounded, Grid, ModelSelection, NonNegative, Positive, SpecError, Validator,
+    A_OVER_LAMBDA_ALLOWED,
 };
 use crate::table::{Cell, Table};
 use anyhow::Result;
 use plotters::style::RGBColor;
 use serde::Deserialize;
-
-/// The finite-element curves of the fingertip scenes (`[fingertip_fe.fe]`,
-/// `[fingertip_area.fe]`): one per modulus E* at the ridges' AR and τ_max. The parameters left
-/// out take their defaults (docs/replication.md R7, `crate::defaults`); two scenes with the same
-/// table share their cached curves.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct FingertipFe {
-    /// Load until a/λ reaches this value, in (0, 0.5). A target in the last element of the face
-    /// ends the curve when the valley node touches (the contact closes).
-    pub until_a_over_lambda: Bounded<OpenHalfWidth>,
-    /// `coarse` (32×16), `default` (48×24), `fine` (72×36), or the number of elements along the
-    /// contact face; absent: `default`.
-    #[serde(default, deserialize_with = "mesh_from_name")]
-    pub mesh: Option<MeshLevel>,
-    /// h/λ (R7; default in `crate::defaults`).
-    #[serde(default)]
-    pub thickness_over_lambda: Option<Bounded<Positive>>,
-    /// κ/G (R7; default in `crate::defaults`).
-    #[serde(default)]
-    pub kappa_over_g: Option<Bounded<Positive>>,
-    /// μ of the Coulomb–Orowan law (R7; default in `crate::defaults`).
-    #[serde(default)]
-    pub friction_coefficient: Option<Bounded<NonNegative>>,
-    /// Elastic slip at the friction threshold over the mean face element length (R3; default in
-    /// `crate::defaults`).
-    #[serde(default)]
-    pub elastic_slip_over_element: Option<Bounded<Positive>>,
-    /// `finite` (the paper's physics) or `linear`.
-    #[serde(default)]
-    pub kinematics: Kinematics,
-}
-
-impl FingertipFe {
-    /// The physical parameters of the curve at modulus `estar_mpa`.
-    pub fn physics(&self, estar_mpa: f64) -> FePhysics {
-        FePhysics {
-            estar_mpa,
-            thickness_over_lambda: self
-                .thickness_over_lambda
-                .map_or_else(defaults::thickness_over_lambda, Bounded::get),
-            kappa_over_g: self
-                .kappa_over_g
-                .map_or_else(defaults::kappa_over_g, Bounded::get),
-            friction_coefficient: self
-                .friction_coefficient
-                .map_or_else(defaults::friction_coefficient, Bounded::get),
-            elastic_slip_over_element: self
-                .elastic_slip_over_element
-                .map_or_else(defaults::elastic_slip_over_element, Bounded::get),
-            kinematics: self.kinematics,
-        }
-    }
-
-    /// The curve at (AR, τ_max in MPa, E* in MPa), at the run's mesh override if it has one.
-    pub fn case(
-        &self,
-        aspect_ratio: f64,
-        tau_max_mpa: f64,
-        estar_mpa: f64,
-        opts: &RunOptions,
-    ) -> FeCase {
-        let options = SolveOptions {
-            until_a_over_lambda: self.until_a_over_lambda.get(),
-            mesh: opts
-                .fe_mesh_override
-                .unwrap_or(self.mesh.unwrap_or_default()),
-            ..SolveOptions::default()
-        };
-        FeCase::new(&self.physics(estar_mpa), aspect_ratio, tau_max_mpa, options)
-    }
-}
-
-/// The ridges' aspect ratio Δ/λ, refused unless below ½ (the indenter's peak-to-valley 2Δ
-/// must fit in a wavelength's half-period geometry).
-pub(crate) fn ridge_aspect_ratio(
-    v: &Validator,
-    scene: &str,
-    wavelength_mm: f64,
-    amplitude_mm: f64,
-) -> Result<f64, SpecError> {
-    let ar = amplitude_mm / wavelength_mm;
-    if ar >= 0.5 {
-        return Err(v.invalid(
-            &format!("{scene}.amplitude_mm"),
-            None,
-            amplitude_mm.to_string(),
-            format!("< wavelength_mm / 2 = {}", wavelength_mm / 2.0),
-        ));
-    }
-    Ok(ar)
-}
-
-/// E*_fit, the modulus of the FE sweep the WNL polynomials were fitted at, MPa: the spec's
-/// `fit_estar_mpa`, or the FE sweep's default (R7, R9).
-pub(crate) fn fit_estar_mpa(field: Option<Bounded<Positive>>) -> f64 {
-    field.map_or_else(defaults::fe_estar_mpa, Bounded::get)
-}
-
-/// The WNL law read as a law of the physical group τ_max/E*: the polynomials evaluated at
-/// τ_eff = (τ_max/E*) × E*_fit, the τ_max that gives the same τ_max/E* in the fitted sweep
-/// (docs/replication.md R9). At E* = E*_fit it is the paper's law.
-pub(crate) fn wnl_tau_over_estar(
-    models: &ModelSelection,
-    aspect_ratio: f64,
-    tau_max_mpa: f64,
-    estar_mpa: f64,
-    fit_estar_mpa: f64,
-) -> ModelLaw {
-    ModelLaw::new(
-        ModelKind::Wnl,
-        aspect_ratio,
-        tau_max_mpa / estar_mpa * fit_estar_mpa,
-        models.reading,
-        models.coefficients,
-    )
-}
-
-/// Where a law leaves its fit domain, in words (`AR 0.08 < 0.1`, `τ 0.714 MPa > 0.2 MPa`), one
-/// per coordinate; empty inside it and for Westergaard.
-pub(crate) fn outside_fit(law: &ModelLaw) -> Vec<String> {
-    let ModelLaw::Wnl(m) = law else {
-        return vec![];
-    };
-    if !m.is_extrapolated() {
-        return vec![];
-    }
-    let d = m.coefficients.domain;
-    let side = |x: f64, lo: f64, hi: f64| if x < lo { format!("< {lo}") } else { format!("> {hi}") };
-    let mut why = vec![];
-    if !(d.aspect_ratio_min..=d.aspect_ratio_max).contains(&m.aspect_ratio) {
-        why.push(format!(
-            "AR {} {}",
-            sig_digits(m.aspect_ratio, 3),
-            side(m.aspect_ratio, d.aspect_ratio_min, d.aspect_ratio_max)
-        ));
-    }
-    if !(d.tau_max_mpa_min..=d.tau_max_mpa_max).contains(&m.tau_max_mpa) {
-        why.push(format!(
-            "τ {} MPa {} MPa",
-            sig_digits(m.tau_max_mpa, 3),
-            side(m.tau_max_mpa, d.tau_max_mpa_min, d.tau_max_mpa_max)
-        ));
-    }
-    why
-}
-
-/// Where a mean pressure falls on an FE curve.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum FeInverse {
-    /// At or below the curve's last point: a/λ there.
-    Within(f64),
-    /// Above the curve's last point (a/λ = `last_a_over_lambda`): the FE says only that the
-    /// contact is at least that wide.
-    Beyond { last_a_over_lambda: f64 },
-}
-
-/// a/λ at which an FE curve carries p̄/E* = `p_over_estar` (≥ 0): linear in √p̄ between the
-/// origin (no load, no contact) and the curve's points, whose p̄ must not decrease. Points that
-/// repeat an edge position (within 10⁻⁶, as in [`p_at`]) are skipped. Above the last point the
-/// answer is [`FeInverse::Beyond`], never an extrapolation.
-pub(crate) fn fe_a_over_lambda_at(
-    points: &[CurvePoint],
-    p_over_estar: f64,
-) -> Result<FeInverse, String> {
-    let mut nodes = vec![(0.0, 0.0)];
-    for p in points {
-        let &(a, s) = nodes.last().expect("starts with the origin");
-        if p.a_over_lambda <= a + 1e-6 {
-            continue;
-        }
-        let root = p.p_over_estar.max(0.0).sqrt();
-        if root < s {
-            return Err(format!(
-                "the FE curve's p̄/E* decreases to {} at a/λ = {}: no unique contact width",
-                sig_digits(p.p_over_estar, 6),
-                sig_digits(p.a_over_lambda, 4)
-            ));
-        }
-        nodes.push((p.a_over_lambda, root));
-    }
-    let target = p_over_estar.max(0.0).sqrt();
-    let &(last_a, last_s) = nodes.last().expect("starts with the origin");
-    if target > last_s {
-        return Ok(FeInverse::Beyond {
-            last_a_over_lambda: last_a,
-        });
-    }
-    let k = nodes
-        .iter()
-        .position(|&(_, s)| s >= target)
-        .expect("target ≤ the last node's");
-    if k == 0 {
-        return Ok(FeInverse::Within(0.0));
-    }
-    let ((a0, s0), (a1, s1)) = (nodes[k - 1], nodes[k]);
-    let t = if s1 > s0 {
-        (target - s0) / (s1 - s0)
-    } else {
-        1.0
-    };
-    Ok(FeInverse::Within(a0 + t * (a1 - a0)))
-}
-
-/// `complete`, or `incomplete at a/λ = …: <reason>` for a curve that stopped short.
-pub(crate) fn fe_status(fe: &FeOutcome) -> String {
-    match &fe.failure {
-        None => "complete".into(),
-        Some(f) => format!("incomplete at a/λ = {}: {f}", sig_digits(last_a(fe), 4)),
-    }
-}
-
-/// The a/λ of an FE curve's last point (0 for an empty curve).
-pub(crate) fn last_a(fe: &FeOutcome) -> f64 {
-    fe.points.last().map_or(0.0, |p| p.a_over_lambda)
-}
 
 /// The fingertip ridges against direct FE: one panel per E* (and a frictionless one).
 #[derive(Debug, Clone, Deserialize)]
@@ -319,6 +100,31 @@ struct PanelCase {
     tau_max_mpa: f64,
     /// The E* the FE case is built with (the frictionless curve is keyed at E*_fit).
     fe_estar_mpa: f64,
+}
+
+impl PanelCase {
+    /// τ_max/E* (none for the frictionless panel).
+    fn tau_over_estar(&self) -> Option<f64> {
+        self.estar_mpa.map(|e| self.tau_max_mpa / e)
+    }
+
+    /// The panel's title, which also names its FE curve.
+    fn name(&self) -> String {
+        match (self.estar_mpa, self.tau_over_estar()) {
+            (Some(e), Some(r)) => format!(
+                "E* = {e} MPa, τ_max = {} MPa (τ_max/E* = {})",
+                self.tau_max_mpa,
+                sig_digits(r, 2)
+            ),
+            _ => "frictionless (any E*)".into(),
+        }
+    }
+
+    /// The panel's name in a list: its modulus.
+    fn short_name(&self) -> String {
+        self.estar_mpa
+            .map_or("frictionless".into(), |e| format!("E* = {e} MPa"))
+    }
 }
 
 /// One line of a panel.
@@ -412,105 +218,133 @@ fn unphysical(law: &ModelLaw, xs: &[f64]) -> Option<String> {
 }
 
 fn run(title: &str, s: &FingertipFeScene, opts: &RunOptions) -> Result<SceneResult> {
-    let ar = s.aspect_ratio();
-    let fit = fit_estar_mpa(s.fit_estar_mpa);
     let xs = s.a_over_lambda.values();
     let error_xs = s.error_a_over_lambda.values();
     let panels = s.panels();
     let outcomes = fe_cases::solve_all(&s.fe_cases(opts), opts)?;
-    let key_lines = s.lines(&panels[0]);
+    let mut tables = Tables::new(&s.lines(&panels[0]));
+    let mut remarks = Remarks::default();
+    let mut outside = OutsideFit::default();
+    let mut figure_panels = vec![];
+    for (panel, fe) in panels.iter().zip(&outcomes) {
+        let lines = s.lines(panel);
+        let reference: Vec<(f64, f64)> = error_xs
+            .iter()
+            .filter_map(|&x| Some((x, p_at(&fe.points, x)?)))
+            .collect();
+        let judged: Vec<Judged> = lines.iter().map(|l| judge(l, &reference, &xs)).collect();
+        remarks.stopped_curve(&panel.name(), fe);
+        for (l, j) in lines.iter().zip(&judged) {
+            outside.add(l, &j.outside_fit, &panel.short_name());
+            if j.law_status != "physical" {
+                let note = format!("{} at {}: {}", l.label, panel.name(), j.law_status);
+                remarks.notes.push(note);
+            }
+        }
+        tables.push_panel(panel, fe, &lines, &judged, &xs, reference.len());
+        figure_panels.push(figure_panel(panel, fe, &lines, &judged, &xs));
+    }
+    remarks.footer = footer(s, opts);
+    outside.remark(&mut remarks);
+    remarks.count_incomplete("see the panels and fe_status in the CSVs");
+    let rows = figure_panels.len().div_ceil(2);
+    let layout = Layout {
+        grid: (rows, 2),
+        panel_px: (560, 430),
+        margin_px: 40 * remarks.footer.len() as u32 + 60,
+        font_px: 15,
+    };
+    Ok(remarks.finish(title, layout, figure_panels, tables.into_vec()))
+}
 
-    let mut header = vec![
-        "estar_mpa",
-        "tau_max_mpa",
-        "tau_over_estar",
-        "a_over_lambda",
-        "p_over_estar_fe",
-    ];
-    let columns: Vec<String> = key_lines
+/// One line of a panel judged against the panel's FE curve.
+struct Judged {
+    /// Relative errors on the error grid where the FE curve reaches (none if it reaches none).
+    errors: Option<ErrorSummary>,
+    /// Where the law leaves its fit domain, in words ([`outside_fit`]).
+    outside_fit: Vec<String>,
+    /// `physical`, or the first a/λ where the law is not a physical pressure.
+    law_status: String,
+}
+
+/// `line` against the FE curve's (a/λ, p̄/E*) `reference`; `xs` the a/λ it is drawn at.
+fn judge(line: &Line, reference: &[(f64, f64)], xs: &[f64]) -> Judged {
+    let values: Vec<f64> = reference
         .iter()
-        .map(|l| format!("p_over_estar_{}", l.key))
+        .map(|&(x, _)| line.law.p_over_estar(x))
         .collect();
-    header.extend(columns.iter().map(String::as_str));
-    let flags: Vec<String> = key_lines
-        .iter()
-        .filter(|l| l.key != "westergaard")
-        .map(|l| format!("{}_extrapolated", l.key))
-        .collect();
-    header.extend(flags.iter().map(String::as_str));
-    header.push("fe_status");
-    let mut curves = Table::new("", &header);
-    let mut fe_points = Table::new(
-        "fe_points",
-        &[
-            "estar_mpa",
-            "tau_max_mpa",
-            "a_over_lambda",
-            "p_over_estar",
-            "p_over_estar_reaction",
-        ],
-    );
-    let mut errors = Table::new(
-        "errors",
-        &[
-            "law",
+    let fe_values: Vec<f64> = reference.iter().map(|r| r.1).collect();
+    Judged {
+        errors: (!values.is_empty()).then(|| relative_errors(&values, &fe_values)),
+        outside_fit: outside_fit(&line.law),
+        law_status: unphysical(&line.law, xs).unwrap_or_else(|| "physical".into()),
+    }
+}
+
+/// The scene's three tables: the lines on the a/λ grid, each line's errors, the FE points.
+struct Tables {
+    curves: Table,
+    errors: Table,
+    fe_points: Table,
+}
+
+impl Tables {
+    /// Empty tables whose line columns are those of `key_lines` (every panel draws the same).
+    fn new(key_lines: &[Line]) -> Self {
+        let mut header = vec![
             "estar_mpa",
             "tau_max_mpa",
             "tau_over_estar",
-            "tau_in_polynomials_mpa",
-            "extrapolated",
-            "outside_fit",
-            "points",
-            "max_rel_error",
-            "rms_rel_error",
-            "law_status",
-            "fe_status",
-        ],
-    );
-
-    let mut figure_panels = vec![];
-    let mut notes = vec![];
-    let mut incomplete = vec![];
-    // (reason, the lines at the panels it applies to)
-    let mut outside: Vec<(String, Vec<String>)> = vec![];
-    let mut wnl_lines = 0;
-    for (panel, fe) in panels.iter().zip(&outcomes) {
-        let estar_cell: Cell = panel.estar_mpa.into();
-        let ratio = panel.estar_mpa.map(|e| panel.tau_max_mpa / e);
-        let ratio_cell: Cell = ratio.unwrap_or(0.0).into();
-        let status = fe_status(fe);
-        let name = match (panel.estar_mpa, ratio) {
-            (Some(e), Some(r)) => format!(
-                "E* = {e} MPa, τ_max = {} MPa (τ_max/E* = {})",
-                panel.tau_max_mpa,
-                sig_digits(r, 2)
-            ),
-            _ => "frictionless (any E*)".into(),
-        };
-        let short = panel
-            .estar_mpa
-            .map_or("frictionless".into(), |e| format!("E* = {e} MPa"));
-        if let Some(f) = &fe.failure {
-            incomplete.push(format!(
-                "FE curve {name} stopped at a/λ = {}: {f}",
-                sig_digits(last_a(fe), 4)
-            ));
+            "a_over_lambda",
+            "p_over_estar_fe",
+        ];
+        let columns: Vec<String> = key_lines
+            .iter()
+            .map(|l| format!("p_over_estar_{}", l.key))
+            .collect();
+        header.extend(columns.iter().map(String::as_str));
+        let flags: Vec<String> = key_lines
+            .iter()
+            .filter(|l| l.key != "westergaard")
+            .map(|l| format!("{}_extrapolated", l.key))
+            .collect();
+        header.extend(flags.iter().map(String::as_str));
+        header.push("fe_status");
+        Tables {
+            curves: Table::new("", &header),
+            errors: Table::new("errors", &ERRORS_HEADER),
+            fe_points: Table::new("fe_points", &FE_POINTS_HEADER),
         }
+    }
+
+    /// The rows of one panel: its FE points, its lines on `xs`, and each line's errors over
+    /// `points` points of the error grid.
+    fn push_panel(
+        &mut self,
+        panel: &PanelCase,
+        fe: &FeOutcome,
+        lines: &[Line],
+        judged: &[Judged],
+        xs: &[f64],
+        points: usize,
+    ) {
+        let estar: Cell = panel.estar_mpa.into();
+        let ratio: Cell = panel.tau_over_estar().unwrap_or(0.0).into();
+        let status = fe.status();
         for p in &fe.points {
-            fe_points.push(vec![
-                estar_cell.clone(),
+            self.fe_points.push(vec![
+                estar.clone(),
                 panel.tau_max_mpa.into(),
                 p.a_over_lambda.into(),
                 p.p_over_estar.into(),
                 p.p_over_estar_reaction.into(),
             ]);
         }
-        let lines = s.lines(panel);
-        for &x in &xs {
+        for &x in xs {
             let mut row = vec![
-                estar_cell.clone(),
+                estar.clone(),
                 panel.tau_max_mpa.into(),
-                ratio_cell.clone(),
+                ratio.clone(),
                 x.into(),
                 p_at(&fe.points, x).into(),
             ];
@@ -522,109 +356,123 @@ fn run(title: &str, s: &FingertipFeScene, opts: &RunOptions) -> Result<SceneResu
                     .map(|l| Cell::from(l.law.is_extrapolated())),
             );
             row.push(status.clone().into());
-            curves.push(row);
+            self.curves.push(row);
         }
-
-        // errors on the grid where the FE curve reaches (all of it for a complete curve)
-        let reference: Vec<(f64, f64)> = error_xs
-            .iter()
-            .filter_map(|&x| Some((x, p_at(&fe.points, x)?)))
-            .collect();
-        let mut panel_notes = vec![];
-        for l in &lines {
-            let values: Vec<f64> = reference
-                .iter()
-                .map(|&(x, _)| l.law.p_over_estar(x))
-                .collect();
-            let fe_values: Vec<f64> = reference.iter().map(|r| r.1).collect();
-            let e = (!values.is_empty()).then(|| relative_errors(&values, &fe_values));
-            let why = outside_fit(&l.law);
-            if l.key != "westergaard" {
-                wnl_lines += 1;
-            }
-            for w in &why {
-                match outside.iter_mut().find(|(r, _)| r == w) {
-                    Some((_, at)) => at.push(format!("{} at {short}", l.label)),
-                    None => outside.push((w.clone(), vec![format!("{} at {short}", l.label)])),
-                }
-            }
-            let law_status = unphysical(&l.law, &xs).unwrap_or_else(|| "physical".into());
-            if law_status != "physical" {
-                panel_notes.push(format!("{}: p̄/E* < 0 (unphysical)", l.label));
-                notes.push(format!("{} at {name}: {law_status}", l.label));
-            }
-            if let Some(e) = e {
-                panel_notes.push(format!(
-                    "{}: max {}, RMS {}",
-                    l.label,
-                    percent(e.max),
-                    percent(e.rms)
-                ));
-            }
-            let tau_poly: Cell = match l.law {
+        for (l, j) in lines.iter().zip(judged) {
+            let tau_in_polynomials: Cell = match l.law {
                 ModelLaw::Wnl(w) => w.tau_max_mpa.into(),
                 ModelLaw::Westergaard(_) => Cell::Empty,
             };
-            errors.push(vec![
+            self.errors.push(vec![
                 l.key.into(),
-                estar_cell.clone(),
+                estar.clone(),
                 panel.tau_max_mpa.into(),
-                ratio_cell.clone(),
-                tau_poly,
+                ratio.clone(),
+                tau_in_polynomials,
                 l.law.is_extrapolated().into(),
-                why.join(", ").into(),
-                (reference.len() as f64).into(),
-                e.map(|e| e.max).into(),
-                e.map(|e| e.rms).into(),
-                law_status.into(),
+                j.outside_fit.join(", ").into(),
+                (points as f64).into(),
+                j.errors.map(|e| e.max).into(),
+                j.errors.map(|e| e.rms).into(),
+                j.law_status.clone().into(),
                 status.clone().into(),
             ]);
         }
-        if fe.failure.is_some() {
-            panel_notes.push(format!(
-                "FE INCOMPLETE: stopped at a/λ = {}",
-                sig_digits(last_a(fe), 3)
-            ));
-        }
-
-        let mut series = vec![Series::markers(
-            Some("FE (this project)".into()),
-            palette::GREY,
-            3,
-            fe.points
-                .iter()
-                .map(|p| (p.a_over_lambda, p.p_over_estar))
-                .collect(),
-        )];
-        for l in &lines {
-            let pts = xs.iter().map(|&x| (x, l.law.p_over_estar(x))).collect();
-            let label = Some(if l.law.is_extrapolated() {
-                format!("{}, extrapolated", l.label)
-            } else {
-                l.label.to_string()
-            });
-            series.push(if l.dashed {
-                Series::dashed(label, l.color, 2, pts)
-            } else {
-                Series::line(label, l.color, 2, pts)
-            });
-        }
-        figure_panels.push(Panel::mean_pressure(
-            name,
-            "a/λ",
-            (xs[0], xs[xs.len() - 1]),
-            series,
-            panel_notes,
-        ));
     }
 
+    fn into_vec(self) -> Vec<Table> {
+        vec![self.curves, self.errors, self.fe_points]
+    }
+}
+
+const ERRORS_HEADER: [&str; 12] = [
+    "law",
+    "estar_mpa",
+    "tau_max_mpa",
+    "tau_over_estar",
+    "tau_in_polynomials_mpa",
+    "extrapolated",
+    "outside_fit",
+    "points",
+    "max_rel_error",
+    "rms_rel_error",
+    "law_status",
+    "fe_status",
+];
+
+const FE_POINTS_HEADER: [&str; 5] = [
+    "estar_mpa",
+    "tau_max_mpa",
+    "a_over_lambda",
+    "p_over_estar",
+    "p_over_estar_reaction",
+];
+
+/// One panel: the FE points, then each line on `xs`; the notes give each line's errors.
+fn figure_panel(
+    panel: &PanelCase,
+    fe: &FeOutcome,
+    lines: &[Line],
+    judged: &[Judged],
+    xs: &[f64],
+) -> Panel {
+    let mut notes = vec![];
+    for (l, j) in lines.iter().zip(judged) {
+        if j.law_status != "physical" {
+            notes.push(format!("{}: p̄/E* < 0 (unphysical)", l.label));
+        }
+        if let Some(e) = j.errors {
+            notes.push(format!(
+                "{}: max {}, RMS {}",
+                l.label,
+                percent(e.max),
+                percent(e.rms)
+            ));
+        }
+    }
+    notes.extend(incomplete_panel_note(fe));
+    let mut series = vec![Series::markers(
+        Some("FE (this project)".into()),
+        palette::GREY,
+        3,
+        fe.points
+            .iter()
+            .map(|p| (p.a_over_lambda, p.p_over_estar))
+            .collect(),
+    )];
+    for l in lines {
+        let pts = xs.iter().map(|&x| (x, l.law.p_over_estar(x))).collect();
+        let label = Some(if l.law.is_extrapolated() {
+            format!("{}, extrapolated", l.label)
+        } else {
+            l.label.to_string()
+        });
+        series.push(if l.dashed {
+            Series::dashed(label, l.color, 2, pts)
+        } else {
+            Series::line(label, l.color, 2, pts)
+        });
+    }
+    Panel::mean_pressure(
+        panel.name(),
+        "a/λ",
+        (xs[0], xs[xs.len() - 1]),
+        series,
+        notes,
+    )
+}
+
+/// The footer before any warning: the ridges and laws, the errors, the τ_max/E* law, the FE.
+fn footer(s: &FingertipFeScene, opts: &RunOptions) -> Vec<String> {
+    let fit = fit_estar_mpa(s.fit_estar_mpa);
+    let error_xs = s.error_a_over_lambda.values();
     let (e0, e1) = (error_xs[0], error_xs[error_xs.len() - 1]);
     let mut footer = vec![
         format!(
             "Ridges λ = {} mm, Δ = {} mm (AR = {}). WNL: reading `{}`, coefficients `{}`.",
             s.wavelength_mm.get(),
             s.amplitude_mm.get(),
-            sig_digits(ar, 3),
+            sig_digits(s.aspect_ratio(), 3),
             s.models.reading,
             s.models.coefficients,
         ),
@@ -649,81 +497,58 @@ fn run(title: &str, s: &FingertipFeScene, opts: &RunOptions) -> Result<SceneResu
             s.fe.until_a_over_lambda.get()
         ));
     }
-    if !outside.is_empty() {
-        let reasons: Vec<String> = outside
+    footer
+}
+
+/// The lines drawn outside the fit domain of the polynomials, by reason.
+#[derive(Default)]
+struct OutsideFit {
+    /// (reason, the lines at the panels it applies to), in order of first appearance.
+    reasons: Vec<(String, Vec<String>)>,
+    /// WNL lines over all panels: a reason that applies to every one says so.
+    wnl_lines: usize,
+}
+
+impl OutsideFit {
+    /// `line` of the panel `short`, outside its fit domain for each of `why`.
+    fn add(&mut self, line: &Line, why: &[String], short: &str) {
+        if line.key != "westergaard" {
+            self.wnl_lines += 1;
+        }
+        for w in why {
+            let at = format!("{} at {short}", line.label);
+            match self.reasons.iter_mut().find(|(r, _)| r == w) {
+                Some((_, lines)) => lines.push(at),
+                None => self.reasons.push((w.clone(), vec![at])),
+            }
+        }
+    }
+
+    /// The EXTRAPOLATED lines of the footer and the run's note (none inside the fit domain).
+    fn remark(&self, remarks: &mut Remarks) {
+        if self.reasons.is_empty() {
+            return;
+        }
+        let reasons: Vec<String> = self
+            .reasons
             .iter()
             .map(|(why, at)| {
-                if at.len() == wnl_lines {
+                if at.len() == self.wnl_lines {
                     format!("{why}: every WNL line")
                 } else {
                     format!("{why}: {}", at.join(", "))
                 }
             })
             .collect();
-        footer.push("EXTRAPOLATED (outside the fit domain of the polynomials):".into());
-        footer.extend(reasons.iter().map(|r| format!("    {r}.")));
-        notes.push(format!(
+        remarks
+            .footer
+            .push("EXTRAPOLATED (outside the fit domain of the polynomials):".into());
+        remarks
+            .footer
+            .extend(reasons.iter().map(|r| format!("    {r}.")));
+        remarks.notes.push(format!(
             "EXTRAPOLATED (outside the fit domain) — {}.",
             reasons.join("; ")
         ));
-    }
-    if !incomplete.is_empty() {
-        footer.push(format!(
-            "INCOMPLETE FE curves ({}): see the panels and fe_status in the CSVs.",
-            incomplete.len()
-        ));
-    }
-    let cols = 2;
-    let rows = figure_panels.len().div_ceil(cols);
-    let figure = Figure {
-        width: 560 * cols as u32,
-        height: 430 * rows as u32 + 40 * footer.len() as u32 + 60,
-        caption: title.into(),
-        grid: (rows, cols),
-        panels: figure_panels,
-        footer,
-        font_px: 15,
-    };
-    Ok(SceneResult {
-        tables: vec![curves, errors, fe_points],
-        figure,
-        notes,
-        incomplete,
-    })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn point(a: f64, p: f64) -> CurvePoint {
-        CurvePoint {
-            a_over_lambda: a,
-            p_over_estar: p,
-            p_over_estar_reaction: p,
-            slab_displacement_over_lambda: 0.0,
-            newton_iterations: 1,
-            active_nodes: 1,
-        }
-    }
-
-    #[test]
-    fn fe_inverse_interpolates_and_never_extrapolates() {
-        let pts = [point(0.1, 0.01), point(0.2, 0.04), point(0.2, 0.04), point(0.3, 0.09)];
-        // p = x² exactly: linear in √p reproduces it
-        for (p, a) in [(0.0, 0.0), (0.0025, 0.05), (0.01, 0.1), (0.0625, 0.25), (0.09, 0.3)] {
-            match fe_a_over_lambda_at(&pts, p) {
-                Ok(FeInverse::Within(x)) => assert!((x - a).abs() < 1e-12, "{p}: {x} ≠ {a}"),
-                other => panic!("{p}: {other:?}"),
-            }
-        }
-        assert_eq!(
-            fe_a_over_lambda_at(&pts, 0.1),
-            Ok(FeInverse::Beyond {
-                last_a_over_lambda: 0.3
-            })
-        );
-        let turning = [point(0.1, 0.02), point(0.2, 0.01)];
-        assert!(fe_a_over_lambda_at(&turning, 0.005).is_err());
     }
 }

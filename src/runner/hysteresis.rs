@@ -8,12 +8,14 @@
 //! frictionless loop closes, `|W| ≤ CLOSURE_RTOL · W_load`, and no loop creates energy,
 //! `W ≥ −CLOSURE_RTOL · W_load` (`W_load = ∫ p̄ dδ` along loading).
 
-use super::fe_cases::{self, FeCase, FeOutcome, FePhysics};
+use super::fe_cases::{self, FeCase, FeOutcome, FePhysics, SolvedCases};
+use super::scene_output::{Layout, Remarks};
 use super::scenes::{Scene, SceneContext, SceneResult};
 use super::RunOptions;
 use crate::accuracy::richardson;
 use crate::fe::{cycle_work_over_estar_lambda2, CurvePoint, Interface, LoadDirection};
-use crate::plot::{padded_range, palette, Figure, LegendPosition, Panel, Series};
+use crate::plot::{padded_range, palette, LegendPosition, Panel, Series};
+use plotters::style::RGBColor;
 use crate::spec::{Bounded, FeSection, NonNegative, Positive, SpecError, Validator};
 use crate::table::{Cell, Table};
 use anyhow::{bail, Result};
@@ -21,8 +23,8 @@ use serde::Deserialize;
 
 /// Largest `|W| / W_load` of a loop that closes: the unloading branch revisits the loading
 /// branch's loads, so a reversible loop differs from zero only by the solver's tolerance
-/// (residual 10⁻¹⁰ of the largest nodal force: measured |W|/W_load ≤ 10⁻¹¹ at AR 0.3). The
-/// same bound is the round-off allowance of "no loop creates energy".
+/// (residual 10⁻¹⁰ of the largest nodal force; tests/fe_hysteresis.rs pins the closure far
+/// below this bound). The same bound is the round-off allowance of "no loop creates energy".
 pub const CLOSURE_RTOL: f64 = 1e-6;
 
 /// Loading–unloading cycles: p̄–a loops per aspect ratio and shear strength, their
@@ -151,72 +153,145 @@ fn loading_work(points: &[CurvePoint]) -> f64 {
 
 fn run(title: &str, s: &HysteresisScene, opts: &RunOptions) -> Result<SceneResult> {
     let loops = s.loops(opts);
-    let all_cases = s.fe_cases(opts);
-    let all_outcomes = fe_cases::solve_all(&all_cases, opts)?;
-    let outcome_of = |case: &FeCase| -> Option<&FeOutcome> {
-        all_cases
-            .iter()
-            .zip(&all_outcomes)
-            .find(|(k, _)| k.problem == case.problem && k.options == case.options && k.unload)
-            .map(|(_, o)| o)
-    };
+    let solved = SolvedCases::solve(s.fe_cases(opts), opts)?;
     let order = match s.fe.error_estimate {
         true => Some(crate::accuracy::measured::committed()?.fe_order()?),
         false => None,
     };
     let estar = s.fe.estar_mpa.get();
+    let mut tables = Tables::new(order.is_some());
+    let mut incomplete = vec![];
+    let mut results: Vec<SolvedLoop> = vec![];
+    for l in &loops {
+        let c = &l.case;
+        let o = solved.outcome(c).expect("every loop was solved");
+        let (ar, h) = (c.problem.aspect_ratio, c.problem.thickness_over_lambda);
+        let label = format!("AR = {ar}, τ_max/E* = {}, h/λ = {h}", c.tau_max_mpa / estar);
+        tables.push_points(l, o, estar);
+        let d = match &o.failure {
+            Some(f) => {
+                let (branch, reached) = match o.unloading.last() {
+                    Some(p) => ("unloading", p.p_over_estar),
+                    None => ("loading", o.points.last().map_or(0.0, |p| p.p_over_estar)),
+                };
+                incomplete.push(format!(
+                    "loop {label} stopped while {branch} at p̄/E* = {reached:.4}: {f}"
+                ));
+                tables.push_dissipation(l, o, estar, Err(format!("incomplete ({branch}): {f}")));
+                None
+            }
+            None => {
+                let d = dissipation(c, o, &solved, order, &label)?;
+                tables.push_dissipation(l, o, estar, Ok(&d));
+                Some(d)
+            }
+        };
+        results.push((l, o, d));
+    }
+    let panels = figure_panels(s, &results);
+    let mut remarks = Remarks::with_footer(footer(s, &results, order)?);
+    remarks.incomplete = incomplete;
+    remarks.count_incomplete(
+        "labelled `incomplete`, drawn as far as they got; see the status column of the dissipation table",
+    );
+    let rows = panels.len().div_ceil(3);
+    let layout = Layout {
+        grid: (rows, 3),
+        panel_px: (430, 430),
+        margin_px: 150,
+        font_px: 15,
+    };
+    // incomplete loops are reported by the run itself (`SceneResult::incomplete`), not as notes
+    let tables = vec![tables.points, tables.dissipation];
+    Ok(remarks.finish(title, layout, panels, tables))
+}
 
-    let mut points = Table::new(
-        "",
-        &[
+/// The dissipation of the complete loop `o` of case `c`, checked (a frictionless loop closes,
+/// no loop creates energy), with its Richardson estimate when `order` is given.
+fn dissipation(
+    c: &FeCase,
+    o: &FeOutcome,
+    solved: &SolvedCases,
+    order: Option<f64>,
+    label: &str,
+) -> Result<Dissipation> {
+    let w_load = loading_work(&o.points);
+    let w = cycle_work_over_estar_lambda2(&o.points, &o.unloading);
+    let reversible = c.problem.interface == Interface::Frictionless;
+    if reversible && w.abs() > CLOSURE_RTOL * w_load {
+        bail!("the frictionless loop {label} does not close: dissipated W/(E*λ²) = {w:.3e}, beyond {CLOSURE_RTOL:e} of the loading work {w_load:.4e}");
+    }
+    if w < -CLOSURE_RTOL * w_load {
+        bail!("the loop {label} creates energy: W/(E*λ²) = {w:.3e} < 0 beyond {CLOSURE_RTOL:e} of the loading work {w_load:.4e}");
+    }
+    // W on the next coarser mesh, and the Richardson extrapolation from the two
+    let coarse = order.and_then(|order| {
+        let (coarse_case, ratio) = fe_cases::coarser_cases(std::slice::from_ref(c))
+            .pop()
+            .flatten()?;
+        let co = solved.outcome(&coarse_case)?;
+        if co.failure.is_some() {
+            return None;
+        }
+        let wc = cycle_work_over_estar_lambda2(&co.points, &co.unloading);
+        Some((wc, richardson(wc, w, ratio, order)))
+    });
+    Ok(Dissipation {
+        loading_work: w_load,
+        work: w,
+        coarse,
+    })
+}
+
+/// The scene's two tables: every point of every loop, and each loop's dissipation.
+struct Tables {
+    points: Table,
+    dissipation: Table,
+    /// The dissipation table has the mesh-convergence columns.
+    with_estimates: bool,
+}
+
+impl Tables {
+    fn new(with_estimates: bool) -> Self {
+        let mut dissipation_header = vec![
             "series",
             "aspect_ratio",
             "tau_max_over_estar",
             "thickness_over_lambda",
-            "branch",
-            "a_over_lambda",
-            "p_over_estar",
-            "slab_displacement_over_lambda",
-        ],
-    );
-    let mut dissipation_header = vec![
-        "series",
-        "aspect_ratio",
-        "tau_max_over_estar",
-        "thickness_over_lambda",
-        "peak_a_over_lambda",
-        "peak_p_over_estar",
-        "loading_work_over_estar_lambda2",
-        "dissipation_over_estar_lambda2",
-        "dissipated_fraction",
-    ];
-    if order.is_some() {
-        dissipation_header.extend([
-            "dissipation_coarse_mesh",
-            "dissipation_richardson",
-            "dissipation_error_estimate",
-        ]);
+            "peak_a_over_lambda",
+            "peak_p_over_estar",
+            "loading_work_over_estar_lambda2",
+            "dissipation_over_estar_lambda2",
+            "dissipated_fraction",
+        ];
+        if with_estimates {
+            dissipation_header.extend([
+                "dissipation_coarse_mesh",
+                "dissipation_richardson",
+                "dissipation_error_estimate",
+            ]);
+        }
+        dissipation_header.push("status");
+        Tables {
+            points: Table::new("", &POINTS_HEADER),
+            dissipation: Table::new("dissipation", &dissipation_header),
+            with_estimates,
+        }
     }
-    dissipation_header.push("status");
-    let mut dissipation = Table::new("dissipation", &dissipation_header);
-    let mut incomplete = vec![];
-    let mut results: Vec<(&Loop, &FeOutcome, Option<Dissipation>)> = vec![];
-    for l in &loops {
+
+    /// Every point of the loop `o`, loading then unloading.
+    fn push_points(&mut self, l: &Loop, o: &FeOutcome, estar_mpa: f64) {
         let c = &l.case;
-        let o = outcome_of(c).expect("every loop was solved");
-        let (ar, h) = (c.problem.aspect_ratio, c.problem.thickness_over_lambda);
-        let tau_e = c.tau_max_mpa / estar;
-        let label = format!("AR = {ar}, τ_max/E* = {tau_e}, h/λ = {h}");
         for (branch, pts) in [
             (LoadDirection::Loading, &o.points),
             (LoadDirection::Unloading, &o.unloading),
         ] {
             for p in pts {
-                points.push(vec![
+                self.points.push(vec![
                     l.series.name().into(),
-                    ar.into(),
-                    tau_e.into(),
-                    h.into(),
+                    c.problem.aspect_ratio.into(),
+                    (c.tau_max_mpa / estar_mpa).into(),
+                    c.problem.thickness_over_lambda.into(),
                     branch.name().into(),
                     p.a_over_lambda.into(),
                     p.p_over_estar.into(),
@@ -224,83 +299,63 @@ fn run(title: &str, s: &HysteresisScene, opts: &RunOptions) -> Result<SceneResul
                 ]);
             }
         }
+    }
+
+    /// The loop's dissipation, or (`Err`) the status of a loop that stopped short.
+    fn push_dissipation(
+        &mut self,
+        l: &Loop,
+        o: &FeOutcome,
+        estar_mpa: f64,
+        d: Result<&Dissipation, String>,
+    ) {
+        let c = &l.case;
         let peak = o.points.last();
         let mut row: Vec<Cell> = vec![
             l.series.name().into(),
-            ar.into(),
-            tau_e.into(),
-            h.into(),
+            c.problem.aspect_ratio.into(),
+            (c.tau_max_mpa / estar_mpa).into(),
+            c.problem.thickness_over_lambda.into(),
             peak.map(|p| p.a_over_lambda).into(),
             peak.map(|p| p.p_over_estar).into(),
         ];
-        let d = match &o.failure {
-            Some(f) => {
-                let (branch, reached) = match o.unloading.last() {
-                    Some(p) => ("unloading", p.p_over_estar),
-                    None => ("loading", peak.map_or(0.0, |p| p.p_over_estar)),
-                };
-                incomplete.push(format!(
-                    "loop {label} stopped while {branch} at p̄/E* = {reached:.4}: {f}"
-                ));
-                row.extend([Cell::Empty, Cell::Empty, Cell::Empty]);
-                if order.is_some() {
-                    row.extend([Cell::Empty, Cell::Empty, Cell::Empty]);
+        let empty = || [Cell::Empty, Cell::Empty, Cell::Empty];
+        match d {
+            Err(status) => {
+                row.extend(empty());
+                if self.with_estimates {
+                    row.extend(empty());
                 }
-                row.push(format!("incomplete ({branch}): {f}").into());
-                None
+                row.push(status.into());
             }
-            None => {
-                let w_load = loading_work(&o.points);
-                let w = cycle_work_over_estar_lambda2(&o.points, &o.unloading);
-                let reversible = c.problem.interface == Interface::Frictionless;
-                if reversible && w.abs() > CLOSURE_RTOL * w_load {
-                    bail!("the frictionless loop {label} does not close: dissipated W/(E*λ²) = {w:.3e}, beyond {CLOSURE_RTOL:e} of the loading work {w_load:.4e}");
-                }
-                if w < -CLOSURE_RTOL * w_load {
-                    bail!("the loop {label} creates energy: W/(E*λ²) = {w:.3e} < 0 beyond {CLOSURE_RTOL:e} of the loading work {w_load:.4e}");
-                }
-                // W on the next coarser mesh, and the Richardson extrapolation from the two
-                let coarse = order.and_then(|order| {
-                    let (coarse_case, ratio) = fe_cases::coarser_cases(std::slice::from_ref(c))
-                        .pop()
-                        .flatten()?;
-                    let co = outcome_of(&coarse_case)?;
-                    if co.failure.is_some() {
-                        return None;
-                    }
-                    let wc = cycle_work_over_estar_lambda2(&co.points, &co.unloading);
-                    Some((wc, richardson(wc, w, ratio, order)))
-                });
+            Ok(d) => {
+                let (w_load, w) = (d.loading_work, d.work);
                 row.extend([w_load.into(), w.into(), (w / w_load).into()]);
-                if order.is_some() {
-                    match coarse {
+                if self.with_estimates {
+                    match d.coarse {
                         Some((wc, limit)) => {
                             row.extend([wc.into(), limit.into(), (limit - w).abs().into()])
                         }
-                        None => row.extend([Cell::Empty, Cell::Empty, Cell::Empty]),
+                        None => row.extend(empty()),
                     }
                 }
                 row.push("complete".into());
-                Some(Dissipation {
-                    loading_work: w_load,
-                    work: w,
-                    coarse,
-                })
             }
-        };
-        dissipation.push(row);
-        results.push((l, o, d));
+        }
+        self.dissipation.push(row);
     }
-
-    let figure = figure(title, s, &results, order)?;
-    // incomplete loops are reported by the run itself (`SceneResult::incomplete`)
-    Ok(SceneResult {
-        tables: vec![points, dissipation],
-        figure,
-        notes: vec![],
-        incomplete,
-    })
 }
+
+const POINTS_HEADER: [&str; 8] = [
+    "series",
+    "aspect_ratio",
+    "tau_max_over_estar",
+    "thickness_over_lambda",
+    "branch",
+    "a_over_lambda",
+    "p_over_estar",
+    "slab_displacement_over_lambda",
+];
 
 /// `(x, y)` of the points of both branches of `o`, loading then unloading.
 fn branch_points(
@@ -317,7 +372,7 @@ fn branch_points(
 /// A loop as two series: loading solid (with `label`), unloading dashed.
 fn loop_series(
     label: Option<String>,
-    color: plotters::style::RGBColor,
+    color: RGBColor,
     branches: [(LoadDirection, Vec<(f64, f64)>); 2],
 ) -> Vec<Series> {
     branches
@@ -329,83 +384,59 @@ fn loop_series(
         .collect()
 }
 
-fn figure(
-    title: &str,
-    s: &HysteresisScene,
-    results: &[(&Loop, &FeOutcome, Option<Dissipation>)],
-    order: Option<f64>,
-) -> Result<Figure> {
-    let estar = s.fe.estar_mpa.get();
-    let taus: Vec<f64> = s.fe.tau_max_mpa.iter().map(|t| t.get()).collect();
-    let color_of_tau = |tau: f64| {
-        let i = taus.iter().position(|&t| t == tau).unwrap_or(0);
-        palette::CYCLE[i % palette::CYCLE.len()]
-    };
-    let main: Vec<_> = results
+/// One loop as solved: its case, its curve, its dissipation (none: it stopped short).
+type SolvedLoop<'a> = (&'a Loop, &'a FeOutcome, Option<Dissipation>);
+
+/// The colour of a shear strength, the same in every panel.
+fn color_of_tau(s: &HysteresisScene, tau: f64) -> RGBColor {
+    let i = s
+        .fe
+        .tau_max_mpa
         .iter()
-        .filter(|(l, _, _)| l.series == LoopSeries::AspectRatio)
-        .collect();
-    let fmt_w = |d: &Option<Dissipation>| match d {
+        .position(|t| t.get() == tau)
+        .unwrap_or(0);
+    palette::CYCLE[i % palette::CYCLE.len()]
+}
+
+/// A loop's dissipation in a legend.
+fn work_label(d: &Option<Dissipation>) -> String {
+    match d {
         None => "incomplete".to_string(),
         Some(d) if d.work.abs() <= CLOSURE_RTOL * d.loading_work => "W ≈ 0 (closes)".into(),
         Some(d) => format!(
             "W/W_load = {}",
             crate::accuracy::measured::percent(d.work / d.loading_work)
         ),
+    }
+}
+
+/// The panels: a p̄–a loop panel per aspect ratio, the dissipation against τ_max/E*, the p̄–δ
+/// loops of the largest aspect ratio, and the confinement loops.
+fn figure_panels(s: &HysteresisScene, results: &[SolvedLoop]) -> Vec<Panel> {
+    let estar = s.fe.estar_mpa.get();
+    let main: Vec<&SolvedLoop> = results
+        .iter()
+        .filter(|(l, _, _)| l.series == LoopSeries::AspectRatio)
+        .collect();
+    let at_ar = |ar: f64| {
+        main.iter()
+            .filter(move |(l, _, _)| l.case.problem.aspect_ratio == ar)
     };
     let mut panels = vec![];
-    // one p̄–a loop panel per aspect ratio
     for ar in s.aspect_ratios.iter().map(|a| a.get()) {
         let mut series = vec![];
-        for (l, o, d) in main.iter().filter(|(l, _, _)| l.case.problem.aspect_ratio == ar) {
+        for (l, o, d) in at_ar(ar) {
             let tau = l.case.tau_max_mpa;
-            let label = format!("τ_max/E* = {}: {}", tau / estar, fmt_w(d));
+            let label = format!("τ_max/E* = {}: {}", tau / estar, work_label(d));
             series.extend(loop_series(
                 Some(label),
-                color_of_tau(tau),
+                color_of_tau(s, tau),
                 branch_points(o, |p| p.a_over_lambda),
             ));
         }
         panels.push(loop_panel(format!("AR = {ar}: p̄–a loops"), "a/λ", series));
     }
-    // dissipation against τ_max/E*, one line per aspect ratio
-    let mut series = vec![];
-    for (i, ar) in s.aspect_ratios.iter().map(|a| a.get()).enumerate() {
-        let pts: Vec<(f64, f64)> = main
-            .iter()
-            .filter(|(l, _, _)| l.case.problem.aspect_ratio == ar)
-            .filter_map(|(l, _, d)| Some((l.case.tau_max_mpa / estar, d.as_ref()?.work)))
-            .collect();
-        let color = palette::CYCLE[i % palette::CYCLE.len()];
-        series.push(Series::line(Some(format!("AR = {ar}")), color, 2, pts.clone()));
-        series.push(Series::markers(None, color, 4, pts));
-    }
-    let x_max = taus.iter().fold(0.0_f64, |m, &t| m.max(t / estar));
-    let mut mesh_note = None;
-    if let Some(order) = order {
-        let largest = main
-            .iter()
-            .filter_map(|(_, _, d)| {
-                let d = d.as_ref()?;
-                Some((d.coarse?.1 - d.work).abs() / d.loading_work)
-            })
-            .fold(0.0_f64, f64::max);
-        mesh_note = Some(format!(
-            "Mesh error of W (Richardson from the next coarser mesh, order {order:.2}): at most {} of the loading work over the aspect-ratio loops; per loop in the dissipation table.",
-            crate::accuracy::measured::percent(largest)
-        ));
-    }
-    panels.push(Panel {
-        title: "Dissipated energy per cycle".into(),
-        x_label: "τ_max/E*".into(),
-        y_label: "W/(E* λ²)".into(),
-        x_range: (0.0, x_max.max(f64::MIN_POSITIVE)),
-        y_range: padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1))),
-        series,
-        notes: vec![],
-        log_scale: (false, false),
-        legend: Some(LegendPosition::UpperRight),
-    });
+    panels.push(dissipation_panel(s, &main));
     // the p̄–δ loops of the largest aspect ratio: their area is W
     let ar_max = s
         .aspect_ratios
@@ -414,11 +445,10 @@ fn figure(
         .fold(0.0_f64, f64::max);
     let mut series = vec![];
     // colours as in the p̄–a panels: no second legend
-    for (l, o, _) in main.iter().filter(|(l, _, _)| l.case.problem.aspect_ratio == ar_max) {
-        let tau = l.case.tau_max_mpa;
+    for (l, o, _) in at_ar(ar_max) {
         series.extend(loop_series(
             None,
-            color_of_tau(tau),
+            color_of_tau(s, l.case.tau_max_mpa),
             branch_points(o, |p| p.slab_displacement_over_lambda),
         ));
     }
@@ -430,34 +460,79 @@ fn figure(
             series,
         )
     });
-    // confinement: p̄–δ loops per layer thickness
     if let Some(c) = &s.confinement {
-        let mut series = vec![];
-        let conf = results.iter().filter(|(l, _, _)| l.series == LoopSeries::Confinement);
-        for (i, (l, o, d)) in conf.enumerate() {
-            series.extend(loop_series(
-                Some(format!(
-                    "h/λ = {}: {}",
-                    l.case.problem.thickness_over_lambda,
-                    fmt_w(d)
-                )),
-                palette::CYCLE[i % palette::CYCLE.len()],
-                branch_points(o, |p| p.slab_displacement_over_lambda),
-            ));
-        }
-        panels.push(loop_panel(
-            format!(
-                "Confinement: AR = {}, τ_max/E* = {}, to p̄/E* = {}",
-                c.aspect_ratio.get(),
-                c.tau_max_mpa.get() / estar,
-                c.until_p_over_estar.get()
-            ),
-            "δ/λ",
-            series,
+        panels.push(confinement_panel(c, estar, results));
+    }
+    panels
+}
+
+/// The dissipation against τ_max/E*, one line per aspect ratio.
+fn dissipation_panel(s: &HysteresisScene, main: &[&SolvedLoop]) -> Panel {
+    let estar = s.fe.estar_mpa.get();
+    let mut series = vec![];
+    for (i, ar) in s.aspect_ratios.iter().map(|a| a.get()).enumerate() {
+        let pts: Vec<(f64, f64)> = main
+            .iter()
+            .filter(|(l, _, _)| l.case.problem.aspect_ratio == ar)
+            .filter_map(|(l, _, d)| Some((l.case.tau_max_mpa / estar, d.as_ref()?.work)))
+            .collect();
+        let color = palette::CYCLE[i % palette::CYCLE.len()];
+        series.push(Series::line(Some(format!("AR = {ar}")), color, 2, pts.clone()));
+        series.push(Series::markers(None, color, 4, pts));
+    }
+    let x_max = s
+        .fe
+        .tau_max_mpa
+        .iter()
+        .fold(0.0_f64, |m, t| m.max(t.get() / estar));
+    Panel {
+        title: "Dissipated energy per cycle".into(),
+        x_label: "τ_max/E*".into(),
+        y_label: "W/(E* λ²)".into(),
+        x_range: (0.0, x_max.max(f64::MIN_POSITIVE)),
+        y_range: padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1))),
+        series,
+        notes: vec![],
+        log_scale: (false, false),
+        legend: Some(LegendPosition::UpperRight),
+    }
+}
+
+/// The confinement series: p̄–δ loops per layer thickness.
+fn confinement_panel(c: &Confinement, estar_mpa: f64, results: &[SolvedLoop]) -> Panel {
+    let mut series = vec![];
+    let conf = results
+        .iter()
+        .filter(|(l, _, _)| l.series == LoopSeries::Confinement);
+    for (i, (l, o, d)) in conf.enumerate() {
+        series.extend(loop_series(
+            Some(format!(
+                "h/λ = {}: {}",
+                l.case.problem.thickness_over_lambda,
+                work_label(d)
+            )),
+            palette::CYCLE[i % palette::CYCLE.len()],
+            branch_points(o, |p| p.slab_displacement_over_lambda),
         ));
     }
-    let columns = 3;
-    let rows = panels.len().div_ceil(columns);
+    loop_panel(
+        format!(
+            "Confinement: AR = {}, τ_max/E* = {}, to p̄/E* = {}",
+            c.aspect_ratio.get(),
+            c.tau_max_mpa.get() / estar_mpa,
+            c.until_p_over_estar.get()
+        ),
+        "δ/λ",
+        series,
+    )
+}
+
+/// The footer: what the loops are, what W is, and the mesh error of W when estimated.
+fn footer(s: &HysteresisScene, results: &[SolvedLoop], order: Option<f64>) -> Result<Vec<String>> {
+    let main: Vec<&SolvedLoop> = results
+        .iter()
+        .filter(|(l, _, _)| l.series == LoopSeries::AspectRatio)
+        .collect();
     let case = &main
         .first()
         .map(|(l, _, _)| &l.case)
@@ -465,32 +540,31 @@ fn figure(
     let (nx, ny) = case.options.mesh.counts();
     let mut footer = vec![
         format!(
-            "Solid: loading to a/λ = {}; dashed: unloading to zero load (slip history carried through). Finite strain, neo-Hookean κ/G = {}, h/λ = {} (but in the confinement panel), E* = {estar} MPa, μ = {}, mesh {nx}×{ny}.",
+            "Solid: loading to a/λ = {}; dashed: unloading to zero load (slip history carried through). Finite strain, neo-Hookean κ/G = {}, h/λ = {} (but in the confinement panel), E* = {} MPa, μ = {}, mesh {nx}×{ny}.",
             s.fe.until_a_over_lambda.get(),
             s.fe.kappa_over_g.get(),
             s.fe.thickness_over_lambda.get(),
+            s.fe.estar_mpa.get(),
             s.fe.friction_coefficient.get()
         ),
         format!(
             "W = ∮ p̄ dδ/(E* λ²), the energy dissipated per cycle, per wavelength and unit ridge length. Checked on every loop: frictionless loops close and no loop creates energy, within {CLOSURE_RTOL:e} of the loading work W_load."
         ),
     ];
-    footer.extend(mesh_note);
-    let stopped = results.iter().filter(|(_, _, d)| d.is_none()).count();
-    if stopped > 0 {
+    if let Some(order) = order {
+        let largest = main
+            .iter()
+            .filter_map(|(_, _, d)| {
+                let d = d.as_ref()?;
+                Some((d.coarse?.1 - d.work).abs() / d.loading_work)
+            })
+            .fold(0.0_f64, f64::max);
         footer.push(format!(
-            "INCOMPLETE loops ({stopped}): labelled `incomplete`, drawn as far as they got; see the status column of the dissipation table."
+            "Mesh error of W (Richardson from the next coarser mesh, order {order:.2}): at most {} of the loading work over the aspect-ratio loops; per loop in the dissipation table.",
+            crate::accuracy::measured::percent(largest)
         ));
     }
-    Ok(Figure {
-        width: 430 * columns as u32,
-        height: 430 * rows as u32 + 150,
-        caption: title.into(),
-        grid: (rows, columns),
-        panels,
-        footer,
-        font_px: 15,
-    })
+    Ok(footer)
 }
 
 fn loop_panel(title: String, x_label: &str, series: Vec<Series>) -> Panel {

@@ -8,10 +8,18 @@
 pub mod scenes;
 pub mod atomic_write;
 pub mod fe_cases;
+pub(crate) mod fe_inverse;
+pub mod fingertip_ridges;
 pub mod measured;
 pub mod review;
+pub(crate) mod richardson_reference;
+pub(crate) mod scene_output;
+pub(crate) mod speed_accuracy_figure;
 pub mod sweep;
+pub(crate) mod tier_measurement;
 pub mod tier_timings;
+pub mod time_tiers;
+pub(crate) mod wnl_beyond_fit;
 
 // The one list of scenes: `module::SectionType`, one line each (see `scenes`).
 scene_registry! {

@@ -8,19 +8,20 @@
 //! times come from `timings` (measured data, written by `wavy time-tiers`: a figure that
 //! recomputed times would differ on every run).
 
-use super::fe_cases::{self, FeCase, FeOutcome, FePhysics};
+use super::fe_cases::{FeCase, FeOutcome, FePhysics, SolvedCases};
+use super::richardson_reference::Reference;
+use super::scene_output::{Layout, Remarks};
+use super::speed_accuracy_figure::figure_panels;
+use super::tier_measurement::{pareto_front, CaseMeasurements, FeCost, Measurement};
 use super::scenes::{Scene, SceneContext, SceneResult};
 use super::tier_timings::{self, Timings};
 use super::RunOptions;
 use crate::accuracy::measured::PHYSICS_COLUMNS;
-use crate::accuracy::{
-    self, relative_errors, richardson, Tier, FORMAL_ORDER_RANGE,
-};
+use crate::accuracy::{relative_errors, Tier};
 use crate::fe::{convergence, Kinematics, MeshLevel};
 use crate::models::PressureLaw;
-use crate::plot::{palette, Figure, LegendPosition, Panel, Series};
 use crate::spec::{Bounded, FeSection, Grid, Positive, SpecError, Validator};
-use crate::table::Table;
+use crate::table::{Cell, Table};
 use anyhow::{bail, Context, Result};
 use serde::{de, Deserialize, Deserializer};
 
@@ -66,11 +67,12 @@ impl SpeedAccuracyScene {
 
     /// The three meshes of the observed order, coarse to fine (ratio ρ each).
     pub fn order_meshes(&self) -> [usize; 3] {
-        let [c, f] = self.reference_meshes;
-        [c * c / f, c, f]
+        let [coarse, fine] = self.reference_meshes;
+        [coarse * coarse / fine, coarse, fine]
     }
 
-    fn ratio(&self) -> f64 {
+    /// The refinement ratio ρ = fine/coarse of the reference meshes.
+    fn refinement_ratio(&self) -> f64 {
         self.reference_meshes[1] as f64 / self.reference_meshes[0] as f64
     }
 
@@ -144,10 +146,15 @@ impl Scene for SpeedAccuracyScene {
                 ));
             }
         }
-        let [c, f] = self.reference_meshes;
-        let [o, ..] = self.order_meshes();
+        let [coarse, fine] = self.reference_meshes;
+        let [coarsest, ..] = self.order_meshes();
         let range = MeshLevel::ELEMENTS_ALONG_FACE;
-        if !(f > c && range.contains(&c) && range.contains(&f) && o * f == c * c && o >= 4) {
+        if !(fine > coarse
+            && range.contains(&coarse)
+            && range.contains(&fine)
+            && coarsest * fine == coarse * coarse
+            && coarsest >= 4)
+        {
             return Err(v.invalid(
                 "speed_accuracy.reference_meshes",
                 None,
@@ -209,45 +216,6 @@ impl Scene for SpeedAccuracyScene {
     }
 }
 
-/// One tier's measurement at one case.
-struct Measurement {
-    tier: Tier,
-    errors: Option<accuracy::ErrorSummary>,
-    /// Why there is no error (an FE curve that stops short, an unphysical law value).
-    status: String,
-    seconds_per_curve: f64,
-    seconds_per_point: Option<f64>,
-    fe: Option<FeCost>,
-}
-
-struct FeCost {
-    dofs: usize,
-    load_steps: usize,
-    newton_iterations: usize,
-}
-
-/// The Pareto front: indices of the measurements no other one beats in both error and cost,
-/// by increasing cost.
-fn pareto_front(ms: &[Measurement]) -> Vec<usize> {
-    let mut ok: Vec<usize> = (0..ms.len()).filter(|&i| ms[i].errors.is_some()).collect();
-    ok.sort_by(|&i, &j| {
-        ms[i]
-            .seconds_per_curve
-            .total_cmp(&ms[j].seconds_per_curve)
-            .then(ms[i].errors.unwrap().max.total_cmp(&ms[j].errors.unwrap().max))
-    });
-    let mut front = vec![];
-    let mut best = f64::INFINITY;
-    for i in ok {
-        let e = ms[i].errors.unwrap().max;
-        if e < best {
-            best = e;
-            front.push(i);
-        }
-    }
-    front
-}
-
 fn run(
     title: &str,
     s: &SpeedAccuracyScene,
@@ -255,44 +223,170 @@ fn run(
     timings_name: &str,
     opts: &RunOptions,
 ) -> Result<SceneResult> {
-    let xs = s.a_over_lambda.values();
     let (ars, taus) = (s.ars(), s.taus());
-    let cases = s.fe_cases(opts);
-    let outcomes = fe_cases::solve_all(&cases, opts)?;
-    let curve = |k: Kinematics, nx: usize, ar: f64, tau: f64| -> &FeOutcome {
-        let want = s.case(k, nx, ar, tau);
-        cases
-            .iter()
-            .zip(&outcomes)
-            .find(|(c, _)| {
-                c.problem == want.problem && c.options == want.options && c.tau_max_mpa == tau
-            })
-            .map(|(_, o)| o)
-            .expect("every curve of the scene is among its cases")
+    let solved = SolvedCases::solve(s.fe_cases(opts), opts)?;
+    let mut tables = Tables::new();
+    let mut cases = vec![];
+    for &ar in &ars {
+        for &tau in &taus {
+            let reference = reference(s, &solved, ar, tau)?;
+            tables.push_reference(s, &reference, ar, tau);
+            let mut measurements = vec![];
+            for tier in &s.tiers {
+                let m = measure(s, &solved, timings, timings_name, tier, ar, tau)?;
+                let values = m.1.as_deref();
+                tables.push_bands(s, tier, values, &reference.p_over_estar, ar, tau);
+                measurements.push(m.0.with_errors(values, &reference.p_over_estar));
+            }
+            let front = pareto_front(&measurements);
+            tables.push_measurements(&measurements, &front, ar, tau);
+            cases.push(CaseMeasurements {
+                aspect_ratio: ar,
+                tau_max_mpa: tau,
+                reference_uncertainty: reference.uncertainty,
+                measurements,
+                front,
+            });
+        }
+    }
+    let (panels, failed) = figure_panels(&s.tiers, &cases);
+    let mut remarks = Remarks::with_footer(footer(s, timings, timings_name));
+    if !failed.is_empty() {
+        remarks.footer_and_note(format!(
+            "tiers without a curve (they stop short of a/λ = {}): {}",
+            s.fe.until_a_over_lambda.get(),
+            failed.join("; ")
+        ));
+    }
+    let layout = Layout {
+        grid: (ars.len(), taus.len()),
+        panel_px: (540, 380),
+        margin_px: 150,
+        font_px: 15,
     };
-    let [order_mesh, coarse, fine] = s.order_meshes();
-    let ratio = s.ratio();
+    Ok(remarks.finish(title, layout, panels, tables.into_vec()))
+}
 
-    let mut main = Table::new(
-        "",
-        &[
-            "tier",
-            "aspect_ratio",
-            "tau_max_mpa",
-            "status",
-            "max_rel_error",
-            "rms_rel_error",
-            "seconds_per_curve",
-            "seconds_per_point",
-            "dofs",
-            "load_steps",
-            "newton_iterations",
-            "pareto",
-        ],
-    );
-    let mut reference_header = vec!["aspect_ratio", "tau_max_mpa"];
-    reference_header.extend(PHYSICS_COLUMNS);
-    reference_header.extend([
+/// The reference of the case (AR, τ_max in MPa): Richardson on the two finest meshes, the order
+/// observed with the third.
+fn reference(s: &SpeedAccuracyScene, solved: &SolvedCases, ar: f64, tau: f64) -> Result<Reference> {
+    let at = format!("AR = {ar}, τ_max = {tau} MPa");
+    let curves = s.order_meshes().map(|nx| {
+        let o = curve(s, solved, Kinematics::Finite, nx, ar, tau);
+        (nx, o)
+    });
+    for (nx, o) in &curves {
+        if let Some(f) = &o.failure {
+            bail!("{at}: the reference needs the finite-strain curve on mesh {nx}, which stopped: {f}");
+        }
+    }
+    Reference::of(
+        curves.map(|(_, o)| o.points.as_slice()),
+        s.order_meshes(),
+        s.refinement_ratio(),
+        &s.a_over_lambda.values(),
+        &at,
+    )
+}
+
+/// The curve of an FE tier (or a reference mesh) at (AR, τ_max in MPa).
+fn curve<'a>(
+    s: &SpeedAccuracyScene,
+    solved: &'a SolvedCases,
+    kinematics: Kinematics,
+    nx: usize,
+    ar: f64,
+    tau: f64,
+) -> &'a FeOutcome {
+    solved
+        .outcome(&s.case(kinematics, nx, ar, tau))
+        .expect("every curve of the scene is among its cases")
+}
+
+/// One tier at (AR, τ_max in MPa): its cost, and its p̄/E* on the a/λ grid (none when it has
+/// no curve there: the measurement's status says why).
+fn measure(
+    s: &SpeedAccuracyScene,
+    solved: &SolvedCases,
+    timings: &Timings,
+    timings_name: &str,
+    tier: &Tier,
+    ar: f64,
+    tau: f64,
+) -> Result<(Measurement, Option<Vec<f64>>)> {
+    let xs = s.a_over_lambda.values();
+    let at = format!("AR = {ar}, τ_max = {tau} MPa");
+    let timing = timings.get(tier, ar, tau).with_context(|| {
+        format!(
+            "{timings_name} has no timing of tier {tier} at {at}: measure it with `wavy time-tiers` (make bench-tiers)"
+        )
+    })?;
+    let (values, status, fe) = match *tier {
+        Tier::Fe {
+            kinematics,
+            elements_along_face: nx,
+        } => {
+            let o = curve(s, solved, kinematics, nx, ar, tau);
+            let (mx, my) = MeshLevel::along_face(nx).counts();
+            let cost = FeCost {
+                dofs: 2 * (mx + 1) * (my + 1),
+                load_steps: o.points.len(),
+                newton_iterations: o.points.iter().map(|p| p.newton_iterations).sum(),
+            };
+            match &o.failure {
+                Some(f) => {
+                    let reached = o.last_a_over_lambda();
+                    (None, format!("stops at a/λ = {reached:.3}: {f}"), Some(cost))
+                }
+                None => {
+                    let v: Option<Vec<f64>> =
+                        xs.iter().map(|&x| convergence::p_at(&o.points, x)).collect();
+                    let v = v.with_context(|| {
+                        format!("{at}: the curve of {tier} does not cover the a/λ grid")
+                    })?;
+                    (Some(v), "ok".into(), Some(cost))
+                }
+            }
+        }
+        _ => {
+            let law = tier.law(ar, tau).expect("a closed-form tier has a law");
+            match xs
+                .iter()
+                .map(|&x| law.physical_p_over_estar(x))
+                .collect::<Result<Vec<f64>, _>>()
+            {
+                Ok(v) => (Some(v), "ok".into(), None),
+                Err(e) => (None, format!("unphysical: {e}"), None),
+            }
+        }
+    };
+    let seconds_per_point = tier
+        .is_closed_form()
+        .then(|| timing.median_seconds_per_curve / timing.points_per_curve as f64);
+    let m = Measurement {
+        tier: *tier,
+        errors: None,
+        status,
+        seconds_per_curve: timing.median_seconds_per_curve,
+        seconds_per_point,
+        fe,
+    };
+    Ok((m, values))
+}
+
+/// The scene's three tables: each tier's measurement, the reference of each case, and each
+/// tier's largest error per a/λ band.
+struct Tables {
+    main: Table,
+    reference: Table,
+    bands: Table,
+}
+
+impl Tables {
+    fn new() -> Self {
+        let mut reference_header = vec!["aspect_ratio", "tau_max_mpa"];
+        reference_header.extend(PHYSICS_COLUMNS);
+        reference_header.extend([
             "a_over_lambda_min",
             "a_over_lambda_max",
             "order_meshes",
@@ -300,267 +394,114 @@ fn run(
             "order_used",
             "reference_error_estimate",
             "reference_uncertainty",
-    ]);
-    let mut reference_table = Table::new("reference", &reference_header);
-    let mut bands_table = Table::new(
-        "bands",
-        &[
-            "tier",
-            "aspect_ratio",
-            "tau_max_mpa",
-            "a_over_lambda_from",
-            "a_over_lambda_to",
-            "max_rel_error",
-        ],
-    );
-    let physics = FePhysics::from(&s.fe);
-    let mut panels = vec![];
-    let mut all_errors: Vec<f64> = vec![];
-    let mut all_costs: Vec<f64> = vec![];
-    let mut per_case = vec![];
-    for &ar in &ars {
-        for &tau in &taus {
-            let at = format!("AR = {ar}, τ_max = {tau} MPa");
-            // the reference: Richardson on the two finest meshes, order from three
-            let order_curves = [order_mesh, coarse, fine].map(|nx| {
-                let o = curve(Kinematics::Finite, nx, ar, tau);
-                (nx, o)
-            });
-            for (nx, o) in &order_curves {
-                if let Some(f) = &o.failure {
-                    bail!("{at}: the reference needs the finite-strain curve on mesh {nx}, which stopped: {f}");
-                }
-            }
-            let table = convergence::convergence_table(
-                order_curves.map(|(_, o)| o.points.as_slice()),
-                ratio,
-                &xs,
-            )
-            .with_context(|| {
-                format!("{at}: the reference curves do not cover a/λ ∈ [{}, {}]", xs[0], xs[xs.len() - 1])
-            })?;
-            let q = table.observed_order;
-            let q_used = q.clamp(FORMAL_ORDER_RANGE.0, FORMAL_ORDER_RANGE.1);
-            let reference: Vec<f64> = table
-                .rows
-                .iter()
-                .map(|r| richardson(r.p_over_estar[1], r.p_over_estar[2], ratio, q_used))
+        ]);
+        Tables {
+            main: Table::new("", &MAIN_HEADER),
+            reference: Table::new("reference", &reference_header),
+            bands: Table::new("bands", &BANDS_HEADER),
+        }
+    }
+
+    fn push_reference(&mut self, s: &SpeedAccuracyScene, r: &Reference, ar: f64, tau: f64) {
+        let xs = s.a_over_lambda.values();
+        let [order_mesh, coarse, fine] = s.order_meshes();
+        let mut row: Vec<Cell> = vec![ar.into(), tau.into()];
+        row.extend(FePhysics::from(&s.fe).by_column().map(|(_, v)| v.into()));
+        row.extend([
+            xs[0].into(),
+            xs[xs.len() - 1].into(),
+            format!("{order_mesh} {coarse} {fine}").into(),
+            r.observed_order.into(),
+            r.order_used.into(),
+            r.error_estimate.into(),
+            r.uncertainty.into(),
+        ]);
+        self.reference.push(row);
+    }
+
+    /// The largest error of `tier`'s `values` against `reference` in each a/λ band.
+    fn push_bands(
+        &mut self,
+        s: &SpeedAccuracyScene,
+        tier: &Tier,
+        values: Option<&[f64]>,
+        reference: &[f64],
+        ar: f64,
+        tau: f64,
+    ) {
+        let xs = s.a_over_lambda.values();
+        for band in s.error_bands.windows(2) {
+            let in_band: Vec<usize> = (0..xs.len())
+                .filter(|&i| band[0] <= xs[i] && xs[i] <= band[1])
                 .collect();
-            // The reference's own error: the Richardson estimate of the finest mesh's error, with
-            // the observed order where it is below the formal range (a pre-asymptotic sequence,
-            // where the formal order would understate it).
-            if q.is_nan() || q <= 0.0 {
-                bail!("{at}: the finite-strain curves on meshes {order_mesh}, {coarse}, {fine} do not converge (observed order {q})");
-            }
-            let q_error = q.min(q_used);
-            let mut reference_error = 0.0f64;
-            let mut sensitivity = 0.0f64;
-            for (r, &rv) in table.rows.iter().zip(&reference) {
-                let [_, c, f] = r.p_over_estar;
-                reference_error = reference_error
-                    .max(((f - c) / (ratio.powf(q_error) - 1.0) / rv).abs());
-                // the reference's uncertainty: its spread over the plausible orders, from the
-                // smaller of the observed and the formal lower order to the formal upper one
-                let spread = richardson(c, f, ratio, q_error.min(FORMAL_ORDER_RANGE.0))
-                    - richardson(c, f, ratio, FORMAL_ORDER_RANGE.1);
-                sensitivity = sensitivity.max((spread / rv).abs());
-            }
-            let mut row: Vec<crate::table::Cell> = vec![ar.into(), tau.into()];
-            row.extend(physics.by_column().map(|(_, v)| v.into()));
-            row.extend([
-                xs[0].into(),
-                xs[xs.len() - 1].into(),
-                format!("{order_mesh} {coarse} {fine}").into(),
-                q.into(),
-                q_used.into(),
-                reference_error.into(),
-                sensitivity.into(),
+            let error = values.map(|v| {
+                let pick = |w: &[f64]| in_band.iter().map(|&i| w[i]).collect::<Vec<_>>();
+                relative_errors(&pick(v), &pick(reference)).max
+            });
+            self.bands.push(vec![
+                tier.name().into(),
+                ar.into(),
+                tau.into(),
+                band[0].into(),
+                band[1].into(),
+                error.into(),
             ]);
-            reference_table.push(row);
-
-            let mut ms: Vec<Measurement> = vec![];
-            for tier in &s.tiers {
-                let timing = timings.get(tier, ar, tau).with_context(|| {
-                    format!(
-                        "{timings_name} has no timing of tier {tier} at {at}: measure it with `wavy time-tiers` (make bench-tiers)"
-                    )
-                })?;
-                let (values, status, fe) = match *tier {
-                    Tier::Fe {
-                        kinematics,
-                        elements_along_face: nx,
-                    } => {
-                        let o = curve(kinematics, nx, ar, tau);
-                        let (mx, my) = MeshLevel::along_face(nx).counts();
-                        let cost = FeCost {
-                            dofs: 2 * (mx + 1) * (my + 1),
-                            load_steps: o.points.len(),
-                            newton_iterations: o.points.iter().map(|p| p.newton_iterations).sum(),
-                        };
-                        match &o.failure {
-                            Some(f) => {
-                                let reached = o.points.last().map_or(0.0, |p| p.a_over_lambda);
-                                (None, format!("stops at a/λ = {reached:.3}: {f}"), Some(cost))
-                            }
-                            None => {
-                                let v: Option<Vec<f64>> =
-                                    xs.iter().map(|&x| convergence::p_at(&o.points, x)).collect();
-                                let v = v.with_context(|| {
-                                    format!("{at}: the curve of {tier} does not cover the a/λ grid")
-                                })?;
-                                (Some(v), "ok".into(), Some(cost))
-                            }
-                        }
-                    }
-                    _ => {
-                        let law = tier.law(ar, tau).expect("a closed-form tier has a law");
-                        match xs
-                            .iter()
-                            .map(|&x| law.physical_p_over_estar(x))
-                            .collect::<Result<Vec<f64>, _>>()
-                        {
-                            Ok(v) => (Some(v), "ok".into(), None),
-                            Err(e) => (None, format!("unphysical: {e}"), None),
-                        }
-                    }
-                };
-                let seconds_per_point = tier
-                    .is_closed_form()
-                    .then(|| timing.median_seconds_per_curve / timing.points_per_curve as f64);
-                for band in s.error_bands.windows(2) {
-                    let in_band: Vec<usize> = (0..xs.len())
-                        .filter(|&i| band[0] <= xs[i] && xs[i] <= band[1])
-                        .collect();
-                    let error = values.as_ref().map(|v| {
-                        let pick = |w: &[f64]| in_band.iter().map(|&i| w[i]).collect::<Vec<_>>();
-                        relative_errors(&pick(v), &pick(&reference)).max
-                    });
-                    bands_table.push(vec![
-                        tier.name().into(),
-                        ar.into(),
-                        tau.into(),
-                        band[0].into(),
-                        band[1].into(),
-                        error.into(),
-                    ]);
-                }
-                ms.push(Measurement {
-                    tier: *tier,
-                    errors: values.map(|v| relative_errors(&v, &reference)),
-                    status,
-                    seconds_per_curve: timing.median_seconds_per_curve,
-                    seconds_per_point,
-                    fe,
-                });
-            }
-            let front = pareto_front(&ms);
-            for (i, m) in ms.iter().enumerate() {
-                main.push(vec![
-                    m.tier.name().into(),
-                    ar.into(),
-                    tau.into(),
-                    m.status.clone().into(),
-                    m.errors.map(|e| e.max).into(),
-                    m.errors.map(|e| e.rms).into(),
-                    m.seconds_per_curve.into(),
-                    m.seconds_per_point.into(),
-                    m.fe.as_ref().map(|f| f.dofs as f64).into(),
-                    m.fe.as_ref().map(|f| f.load_steps as f64).into(),
-                    m.fe.as_ref().map(|f| f.newton_iterations as f64).into(),
-                    front.contains(&i).into(),
-                ]);
-                if let Some(e) = m.errors {
-                    all_errors.push(e.max);
-                    all_costs.push(m.seconds_per_curve);
-                }
-            }
-            per_case.push((ar, tau, sensitivity, ms, front));
         }
     }
 
-    let x_range = log_range(&all_errors);
-    let y_range = log_range(&all_costs);
-    let mut failed_notes = vec![];
-    let finite_meshes: Vec<String> = s
-        .tiers
-        .iter()
-        .filter_map(|t| match t {
-            Tier::Fe {
-                kinematics: Kinematics::Finite,
-                elements_along_face,
-            } => Some(elements_along_face.to_string()),
-            _ => None,
-        })
-        .collect();
-    let fe_label = format!("FE finite strain, mesh {}", finite_meshes.join(", "));
-    for (k, (ar, tau, reference_uncertainty, ms, front)) in per_case.iter().enumerate() {
-        let family = |t: &Tier| match t {
-            Tier::Westergaard => ("Westergaard", palette::BLACK),
-            Tier::Wnl(crate::models::CoefficientSet::PaperTable1) => {
-                ("WNL, paper's Table 1", palette::ORANGE)
-            }
-            Tier::Wnl(_) => ("WNL, our refit", palette::GREEN),
-            Tier::Fe {
-                kinematics: Kinematics::Linear,
-                ..
-            } => ("FE linear", palette::PURPLE),
-            Tier::Fe { .. } => (fe_label.as_str(), palette::BLUE),
-        };
-        let mut series: Vec<Series> = vec![];
-        let front_points: Vec<(f64, f64)> = front
-            .iter()
-            .map(|&i| (ms[i].errors.unwrap().max, ms[i].seconds_per_curve))
-            .collect();
-        series.push(Series::dashed(
-            (k == 0).then(|| "Pareto front".into()),
-            palette::GREY,
-            1,
-            front_points,
-        ));
-        let mut labels: Vec<&str> = vec![];
-        for m in ms {
-            let Some(e) = m.errors else { continue };
-            let (label, color) = family(&m.tier);
-            let first = !labels.contains(&label);
-            labels.push(label);
-            series.push(Series::markers(
-                (k == 0 && first).then(|| label.to_string()),
-                color,
-                5,
-                vec![(e.max, m.seconds_per_curve)],
-            ));
+    fn push_measurements(&mut self, ms: &[Measurement], front: &[usize], ar: f64, tau: f64) {
+        for (i, m) in ms.iter().enumerate() {
+            self.main.push(vec![
+                m.tier.name().into(),
+                ar.into(),
+                tau.into(),
+                m.status.clone().into(),
+                m.errors.map(|e| e.max).into(),
+                m.errors.map(|e| e.rms).into(),
+                m.seconds_per_curve.into(),
+                m.seconds_per_point.into(),
+                m.fe.as_ref().map(|f| f.dofs as f64).into(),
+                m.fe.as_ref().map(|f| f.load_steps as f64).into(),
+                m.fe.as_ref().map(|f| f.newton_iterations as f64).into(),
+                front.contains(&i).into(),
+            ]);
         }
-        let fe_path: Vec<(f64, f64)> = ms
-            .iter()
-            .filter(|m| m.tier.is_finite_fe())
-            .filter_map(|m| Some((m.errors?.max, m.seconds_per_curve)))
-            .collect();
-        series.push(Series::line(None, palette::BLUE, 1, fe_path));
-        let failed: Vec<String> = ms
-            .iter()
-            .filter(|m| m.errors.is_none())
-            .map(|m| m.tier.name())
-            .collect();
-        let mut notes = vec![format!(
-            "reference uncertain by ≤ {}",
-            accuracy::measured::percent(*reference_uncertainty)
-        )];
-        if !failed.is_empty() {
-            notes.push(format!("no curve: {}", failed.join(", ")));
-            failed_notes.push(format!("AR = {ar}, τ_max = {tau} MPa: {}", failed.join(", ")));
-        }
-        panels.push(Panel {
-            title: format!("AR = {ar}, τ_max = {tau} MPa"),
-            x_label: "largest relative error of p̄/E*".into(),
-            y_label: "wall time per curve, s".into(),
-            x_range,
-            y_range,
-            series,
-            notes,
-            log_scale: (true, true),
-            legend: (k == 0).then_some(LegendPosition::LowerLeft),
-        });
     }
+
+    fn into_vec(self) -> Vec<Table> {
+        vec![self.main, self.reference, self.bands]
+    }
+}
+
+const MAIN_HEADER: [&str; 12] = [
+    "tier",
+    "aspect_ratio",
+    "tau_max_mpa",
+    "status",
+    "max_rel_error",
+    "rms_rel_error",
+    "seconds_per_curve",
+    "seconds_per_point",
+    "dofs",
+    "load_steps",
+    "newton_iterations",
+    "pareto",
+];
+
+const BANDS_HEADER: [&str; 6] = [
+    "tier",
+    "aspect_ratio",
+    "tau_max_mpa",
+    "a_over_lambda_from",
+    "a_over_lambda_to",
+    "max_rel_error",
+];
+
+/// The footer: how the error and the wall time are measured.
+fn footer(s: &SpeedAccuracyScene, timings: &Timings, timings_name: &str) -> Vec<String> {
+    let xs = s.a_over_lambda.values();
+    let [order_mesh, coarse, fine] = s.order_meshes();
+    let physics = FePhysics::from(&s.fe);
     let mut footer = vec![
         format!(
             "Error: largest over a/λ ∈ [{}, {}] against the Richardson extrapolation of FE meshes {coarse} and {fine}",
@@ -580,46 +521,6 @@ fn run(
         ),
     ];
     footer.extend(timings.describe());
-    let mut notes = vec![];
-    if !failed_notes.is_empty() {
-        let note = format!(
-            "tiers without a curve (they stop short of a/λ = {}): {}",
-            s.fe.until_a_over_lambda.get(),
-            failed_notes.join("; ")
-        );
-        footer.push(note.clone());
-        notes.push(note);
-    }
-    let figure = Figure {
-        width: 540 * taus.len() as u32,
-        height: 380 * ars.len() as u32 + 150,
-        caption: title.into(),
-        grid: (ars.len(), taus.len()),
-        panels,
-        footer,
-        font_px: 15,
-    };
-    Ok(SceneResult {
-        tables: vec![main, reference_table, bands_table],
-        figure,
-        notes,
-        incomplete: vec![],
-    })
+    footer
 }
 
-/// Whole decades enclosing `values` (positive), for a logarithmic axis.
-fn log_range(values: &[f64]) -> (f64, f64) {
-    let (lo, hi) = values
-        .iter()
-        .filter(|v| **v > 0.0 && v.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
-            (lo.min(v), hi.max(v))
-        });
-    if !lo.is_finite() {
-        return (0.1, 1.0);
-    }
-    (
-        10f64.powf(lo.log10().floor()),
-        10f64.powf(hi.log10().ceil().max(lo.log10().floor() + 1.0)),
-    )
-}

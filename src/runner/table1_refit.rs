@@ -3,12 +3,14 @@
 //! same curves.
 
 use super::fe_cases::{self, FeCase};
+use super::scene_output::{Layout, Remarks};
 use super::scenes::{Scene, SceneContext, SceneResult};
 use super::RunOptions;
 use crate::fit::{self, CurveSample, Refit};
 use crate::models::wnl::{quadratic_surface, Correction};
 use crate::models::{Coefficients, FitDomain, Reading};
-use crate::plot::{padded_range, palette, Figure, LegendPosition, Panel, Series};
+use crate::numfmt::sig_digits;
+use crate::plot::{padded_range, palette, LegendPosition, Panel, Series};
 use crate::spec::{Bounded, FeSection, Grid, Positive, SpecError, Validator};
 use crate::table::{Cell, Table};
 use anyhow::{Context, Result};
@@ -83,16 +85,14 @@ pub fn fit_readings(samples: &[CurveSample], domain: FitDomain) -> Result<Vec<Re
 fn run(title: &str, s: &Table1RefitScene, opts: &RunOptions) -> Result<SceneResult> {
     let cases = s.fe_cases(opts);
     let outcomes = fe_cases::solve_all(&cases, opts)?;
-    let mut notes = vec![];
-    let mut incomplete = vec![];
+    let mut remarks = Remarks::default();
     let mut samples = vec![];
     for (case, outcome) in cases.iter().zip(&outcomes) {
-        if let Some(f) = &outcome.failure {
-            incomplete.push(format!(
-                "FE curve AR = {}, τ_max = {} MPa is incomplete ({f}); its converged points are fitted",
-                case.problem.aspect_ratio, case.tau_max_mpa
-            ));
-        }
+        let label = format!(
+            "AR = {}, τ_max = {} MPa",
+            case.problem.aspect_ratio, case.tau_max_mpa
+        );
+        remarks.stopped_curve(&label, outcome);
         samples.extend(outcome.points.iter().map(|p| CurveSample {
             aspect_ratio: case.problem.aspect_ratio,
             tau_max_mpa: case.tau_max_mpa,
@@ -100,6 +100,36 @@ fn run(title: &str, s: &Table1RefitScene, opts: &RunOptions) -> Result<SceneResu
             p_over_estar: p.p_over_estar,
         }));
     }
+    let fits = fit_readings(&samples, fitted_domain(&cases))?;
+    let best = best_reading(&fits);
+    remarks.notes.push(best.clone());
+    let (nx, ny) = cases
+        .first()
+        .map(|c| c.options.mesh.counts())
+        .unwrap_or((0, 0));
+    let ars: Vec<f64> = s.aspect_ratios.iter().map(|a| a.get()).collect();
+    remarks.footer = vec![
+        format!(
+            "Least squares in p̄/E* over {} FE points (AR ∈ {:?}, τ_max ∈ {:?} MPa, mesh {nx}×{ny}); solid: ours, dashed: paper Table 1.",
+            samples.len(),
+            ars,
+            s.fe.tau_max_mpa.iter().map(|t| t.get()).collect::<Vec<_>>()
+        ),
+        best,
+    ];
+    remarks.count_incomplete("the fit uses their converged points");
+    let layout = Layout {
+        grid: (fits.len(), 2),
+        panel_px: (500, 380),
+        margin_px: 140,
+        font_px: 16,
+    };
+    let tables = vec![coefficients_table(&fits), quality_table(&fits)];
+    Ok(remarks.finish(title, layout, figure_panels(s, &fits), tables))
+}
+
+/// The (AR, τ_max) span of the fitted curves.
+fn fitted_domain(cases: &[FeCase]) -> FitDomain {
     let span = |v: &mut dyn Iterator<Item = f64>| {
         v.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
             (lo.min(x), hi.max(x))
@@ -107,21 +137,40 @@ fn run(title: &str, s: &Table1RefitScene, opts: &RunOptions) -> Result<SceneResu
     };
     let (ar_lo, ar_hi) = span(&mut cases.iter().map(|c| c.problem.aspect_ratio));
     let (tau_lo, tau_hi) = span(&mut cases.iter().map(|c| c.tau_max_mpa));
-    let domain = FitDomain {
+    FitDomain {
         aspect_ratio_min: ar_lo,
         aspect_ratio_max: ar_hi,
         tau_max_mpa_min: tau_lo,
         tau_max_mpa_max: tau_hi,
-    };
-    let fits = fit_readings(&samples, domain)?;
+    }
+}
 
-    // Coefficients beside the paper's.
+/// The reading that fits our FE curves best, and how the others compare, in words.
+fn best_reading(fits: &[ReadingFit]) -> String {
+    let best = fits
+        .iter()
+        .min_by(|x, y| x.refit.mse.total_cmp(&y.refit.mse))
+        .expect("three readings");
+    format!(
+        "best reading of Eq. 4 on our FE curves: {} (MSE {}; {})",
+        best.refit.reading,
+        sig_digits(best.refit.mse, 3),
+        fits.iter()
+            .filter(|f| f.refit.reading != best.refit.reading)
+            .map(|f| format!("{} {}", f.refit.reading, sig_digits(f.refit.mse, 3)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    )
+}
+
+/// The coefficients beside the paper's: one row per coefficient, one column per reading.
+fn coefficients_table(fits: &[ReadingFit]) -> Table {
     let mut header = vec!["coefficient".to_string(), "paper".to_string()];
     header.extend(
         fits.iter()
             .map(|f| format!("ours_{}", f.refit.reading.name().replace('-', "_"))),
     );
-    let mut coefficients = Table::new("", &header.iter().map(String::as_str).collect::<Vec<_>>());
+    let mut table = Table::new("", &header.iter().map(String::as_str).collect::<Vec<_>>());
     let paper = Coefficients::PAPER_TABLE1;
     for correction in Correction::BOTH {
         for i in 0..6 {
@@ -131,11 +180,15 @@ fn run(title: &str, s: &Table1RefitScene, opts: &RunOptions) -> Result<SceneResu
                 get(&paper).into(),
             ];
             row.extend(fits.iter().map(|f| Cell::Num(get(&f.refit.coefficients))));
-            coefficients.push(row);
+            table.push(row);
         }
     }
-    // How well each reading fits, and how well the paper's coefficients do on our curves.
-    let mut quality = Table::new(
+    table
+}
+
+/// How well each reading fits, and how well the paper's coefficients do on our curves.
+fn quality_table(fits: &[ReadingFit]) -> Table {
+    let mut table = Table::new(
         "fit",
         &[
             "reading",
@@ -146,8 +199,8 @@ fn run(title: &str, s: &Table1RefitScene, opts: &RunOptions) -> Result<SceneResu
             "condition_number",
         ],
     );
-    for f in &fits {
-        quality.push(vec![
+    for f in fits {
+        table.push(vec![
             f.refit.reading.name().into(),
             (f.refit.samples as f64).into(),
             f.refit.mse.into(),
@@ -156,31 +209,16 @@ fn run(title: &str, s: &Table1RefitScene, opts: &RunOptions) -> Result<SceneResu
             f.refit.condition_number.into(),
         ]);
     }
-    let best = fits
-        .iter()
-        .min_by(|x, y| x.refit.mse.total_cmp(&y.refit.mse))
-        .expect("three readings");
-    let best_reading = format!(
-        "best reading of Eq. 4 on our FE curves: {} (MSE {}; {})",
-        best.refit.reading,
-        crate::numfmt::sig_digits(best.refit.mse, 3),
-        fits.iter()
-            .filter(|f| f.refit.reading != best.refit.reading)
-            .map(|f| format!(
-                "{} {}",
-                f.refit.reading,
-                crate::numfmt::sig_digits(f.refit.mse, 3)
-            ))
-            .collect::<Vec<_>>()
-            .join(", ")
-    );
-    notes.push(best_reading.clone());
+    table
+}
 
-    // Figure: per reading, A and B against τ_max at the FE aspect ratios, ours against the paper's.
+/// Per reading, A and B against τ_max at the FE aspect ratios, ours against the paper's.
+fn figure_panels(s: &Table1RefitScene, fits: &[ReadingFit]) -> Vec<Panel> {
     let taus = s.tau_max_mpa.values();
     let ars: Vec<f64> = s.aspect_ratios.iter().map(|a| a.get()).collect();
+    let paper = Coefficients::PAPER_TABLE1;
     let mut panels = vec![];
-    for f in &fits {
+    for f in fits {
         for correction in Correction::BOTH {
             let name = correction.name();
             let mut series = vec![];
@@ -214,8 +252,8 @@ fn run(title: &str, s: &Table1RefitScene, opts: &RunOptions) -> Result<SceneResu
                 y_range: y,
                 series,
                 notes: vec![
-                    format!("MSE ours {}", crate::numfmt::sig_digits(f.refit.mse, 2)),
-                    format!("MSE paper {}", crate::numfmt::sig_digits(f.paper_mse, 2)),
+                    format!("MSE ours {}", sig_digits(f.refit.mse, 2)),
+                    format!("MSE paper {}", sig_digits(f.paper_mse, 2)),
                 ],
                 // A falls with τ_max and AR, B rises: keep the legend off the lines
                 log_scale: (false, false),
@@ -227,39 +265,5 @@ fn run(title: &str, s: &Table1RefitScene, opts: &RunOptions) -> Result<SceneResu
             });
         }
     }
-    let (nx, ny) = cases
-        .first()
-        .map(|c| c.options.mesh.counts())
-        .unwrap_or((0, 0));
-    let figure = Figure {
-        width: 1000,
-        height: 380 * fits.len() as u32 + 140,
-        caption: title.into(),
-        grid: (fits.len(), 2),
-        panels,
-        footer: vec![
-            format!(
-                "Least squares in p̄/E* over {} FE points (AR ∈ {:?}, τ_max ∈ {:?} MPa, mesh {nx}×{ny}); solid: ours, dashed: paper Table 1.",
-                samples.len(),
-                ars,
-                s.fe.tau_max_mpa.iter().map(|t| t.get()).collect::<Vec<_>>()
-            ),
-            best_reading,
-        ]
-        .into_iter()
-        .chain((!incomplete.is_empty()).then(|| {
-            format!(
-                "INCOMPLETE: {} FE curve(s) stop short of their target a/λ; the fit uses their converged points.",
-                incomplete.len()
-            )
-        }))
-        .collect(),
-        font_px: 16,
-    };
-    Ok(SceneResult {
-        tables: vec![coefficients, quality],
-        figure,
-        notes,
-        incomplete,
-    })
+    panels
 }
