@@ -14,7 +14,7 @@ use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, IntranodeLbltRef, LdltRef, LltRef,
-    SymbolicCholeskyRaw, SymmetricOrdering,
+    SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SparseColMatRef;
@@ -304,18 +304,24 @@ impl SparseSystem {
         })
     }
 
+    /// What every factorisation on the Cholesky symbolic structure does first: count it, forget
+    /// the factor held so far, and hand out the symbolic structure.
+    fn start_cholesky_family_factorisation(&mut self) -> std::sync::Arc<SymbolicCholesky<usize>> {
+        self.factorisations += 1;
+        self.factored = Factored::None;
+        self.symbolic_cholesky.clone().expect("symbolic set")
+    }
+
     /// Supernodal sparse Cholesky `L Lᵀ` (sequential) of the gathered lower triangle into
     /// `llt_values`: the one Cholesky factorisation; `false` if the matrix is not
     /// numerically positive definite.
     fn factor_llt(&mut self) -> bool {
-        let symbolic = self.symbolic_cholesky.clone().expect("symbolic set");
+        let symbolic = self.start_cholesky_family_factorisation();
         let buf = &mut self
             .llt_scratch
             .as_mut()
             .expect("set with the symbolic")
             .buf;
-        self.factorisations += 1;
-        self.factored = Factored::None;
         let factored = symbolic.factorize_numeric_llt(
             &mut self.llt_values,
             self.ordered.matrix(),
@@ -333,14 +339,12 @@ impl SparseSystem {
     /// on a zero pivot. Cheaper than `L B Lᵀ` on the indefinite tangents, which it
     /// factors accurately enough as a rule (`docs/performance.md`).
     fn factor_ldlt(&mut self) -> bool {
-        let symbolic = self.symbolic_cholesky.clone().expect("symbolic set");
+        let symbolic = self.start_cholesky_family_factorisation();
         let buf = &mut self
             .llt_scratch
             .as_mut()
             .expect("set with the symbolic")
             .buf;
-        self.factorisations += 1;
-        self.factored = Factored::None;
         let factored = symbolic.factorize_numeric_ldlt(
             &mut self.llt_values,
             self.ordered.matrix(),
@@ -359,17 +363,15 @@ impl SparseSystem {
     /// gives the Newton step of an LU at about the cost of a Cholesky factorisation
     /// (`docs/performance.md` compares the two).
     fn factor_lblt(&mut self) {
-        let symbolic = self.symbolic_cholesky.clone().expect("symbolic set");
         self.lblt_subdiag.resize(self.n, 0.0);
         self.lblt_perm.0.resize(self.n, 0);
         self.lblt_perm.1.resize(self.n, 0);
+        let symbolic = self.start_cholesky_family_factorisation();
         let buf = &mut self
             .llt_scratch
             .as_mut()
             .expect("set with the symbolic")
             .buf;
-        self.factorisations += 1;
-        self.factored = Factored::None;
         symbolic.factorize_numeric_intranode_lblt(
             &mut self.llt_values,
             &mut self.lblt_subdiag,
