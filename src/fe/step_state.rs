@@ -3,8 +3,8 @@
 //! coordinates, each element's dilatation, the contact status, tractions and slip of the face).
 //!
 //! The load stepping ([`super::loading`], [`super::unloading`]) hands each converged point to
-//! its observer with a [`Converged`] view of the state (references, nothing computed); only
-//! [`StepStates`] turns the view into a [`StepState`], so an ordinary solve pays nothing.
+//! its observer with a `Converged` view of the state (references, nothing computed); only
+//! `StepStates` turns the view into a [`StepState`], so an ordinary solve pays nothing.
 
 use super::element::shoelace;
 use super::measure::deformed_state;
