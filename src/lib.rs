@@ -8,14 +8,16 @@
 //!   the choice of the cheapest that meets a tolerance), [`csv_text`] (the one reader of our CSV
 //!   tables as text);
 //! - output primitives: [`numfmt`] (the one float formatter), [`table`] (tables, CSV,
-//!   comparison), [`plot`] (deterministic SVG);
+//!   comparison), [`plot`] (deterministic SVG), [`vtk`] (the deformed states as a ParaView
+//!   time series), [`atomic_write`] (complete files or none);
 //! - [`defaults`] (the open physical parameters) and [`spec`] (TOML field types and checks);
-//! - [`runner`] (the scene registry, scenes → tables and figures, sweeps, atomic writes, check).
+//! - [`runner`] (the scene registry, scenes → tables and figures, sweeps, check).
 //!
 //! The command line lives in the binary (`src/main.rs`, `src/cli/`), so no library module can
 //! depend on it.
 
 pub mod accuracy;
+pub mod atomic_write;
 pub mod csv_text;
 pub mod defaults;
 pub mod fe;
@@ -26,3 +28,4 @@ pub mod plot;
 pub mod runner;
 pub mod spec;
 pub mod table;
+pub mod vtk;

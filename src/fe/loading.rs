@@ -17,6 +17,7 @@ use super::measure::{deformed_state, measure};
 use super::model::{Model, State};
 use super::predictor::tangent_at;
 use super::pressure_target::{land_on_pressure, Overshoot, PRESSURE_TARGET_RTOL};
+use super::step_state::Converged;
 use super::{Curve, CurvePoint, SolveOptions};
 
 /// Bounds of the ratio of actual to tangent-extrapolated displacement increment that scales the
@@ -107,13 +108,13 @@ impl LoadPath {
 
 /// Trace the load curve up to `opts.until_a_over_lambda`, one edge event per point (see
 /// [`super::event_search`] for the events, [`super::edge_rule`] for the contact-edge
-/// location).
+/// location). `on_step` sees every converged point with a view of its state.
 pub(crate) fn trace(
     model: &Model,
     asm: &mut Assembly,
     opts: &SolveOptions,
     estar: f64,
-    on_step: &mut dyn FnMut(&CurvePoint),
+    on_step: &mut dyn FnMut(&CurvePoint, Converged<'_>),
 ) -> Result<Curve, Box<CurveFailure>> {
     let path = loading_branch(model, asm, opts, estar, on_step)?;
     Ok(path.finish(model, asm, estar, Vec::new()))
@@ -122,13 +123,14 @@ pub(crate) fn trace(
 /// The loading branch: from first contact, one edge event per point, until the contact
 /// half-width reaches `opts.until_a_over_lambda` (or, with `opts.until_p_over_estar`, until
 /// the mean pressure reaches that: the event that would overshoot it is replaced by the
-/// state on the target, [`land_on_pressure`]).
+/// state on the target, [`land_on_pressure`]). `on_step` sees every converged point with a
+/// view of its state.
 pub(crate) fn loading_branch(
     model: &Model,
     asm: &mut Assembly,
     opts: &SolveOptions,
     estar: f64,
-    on_step: &mut dyn FnMut(&CurvePoint),
+    on_step: &mut dyn FnMut(&CurvePoint, Converged<'_>),
 ) -> Result<LoadPath, Box<CurveFailure>> {
     let mut path = LoadPath::start(model, opts);
     let mut step = 1;
@@ -196,14 +198,24 @@ pub(crate) fn loading_branch(
             match land_on_pressure(model, asm, opts, estar, overshoot, target) {
                 Ok((st, mut point, grad, it)) => {
                     point.newton_iterations = iters + it;
-                    on_step(&point);
+                    let at = Converged {
+                        model,
+                        state: &st,
+                        grad: &grad,
+                    };
+                    on_step(&point, at);
                     path.advance(st, point, grad, None);
                     break;
                 }
                 Err(f) => return Err(path.fail(f.into_error(step, event.0))),
             }
         }
-        on_step(&point);
+        let at = Converged {
+            model,
+            state: &st,
+            grad: &grad,
+        };
+        on_step(&point, at);
         path.advance(st, point, grad, extrapolated);
         step += 1;
     }

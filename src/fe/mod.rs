@@ -37,6 +37,8 @@
 //!   state of a converged state;
 //! * [`curve`]: the computed curve (points, unloading points, last deformed state), the CSV
 //!   row of a point, and the work of a cycle;
+//! * [`step_state`]: the deformed state of every converged point, built only for a caller
+//!   that asks ([`solve_with_states`]);
 //! * [`error`]: why a curve could not be completed, with the points converged before;
 //! * [`convergence`]: interpolation of curves at fixed `a/λ` and the mesh-convergence
 //!   (Richardson) table;
@@ -73,6 +75,7 @@ pub mod predictor;
 pub mod pressure_target;
 pub mod shear_test;
 pub mod step_control;
+pub mod step_state;
 pub mod unloading;
 
 pub use convergence::{
@@ -88,6 +91,7 @@ pub use error::{CurveFailure, SolveError};
 pub use friction::{CoulombOrowan, Interface};
 pub use material::estar_over_g;
 pub use mesh::{Grading, MeshLevel, MeshLevelParseError};
+pub use step_state::StepState;
 
 use serde::{Deserialize, Serialize};
 
@@ -372,7 +376,7 @@ pub fn solve_curve(
 ) -> Result<Curve, Box<CurveFailure>> {
     let (model, estar) = validated_model(problem, opts)?;
     let mut asm = assembly::Assembly::new(&model);
-    loading::trace(&model, &mut asm, opts, estar, on_step)
+    loading::trace(&model, &mut asm, opts, estar, &mut |p, _| on_step(p))
 }
 
 /// The model of a validated problem and `E*/G`, or the input error as a failed curve.
@@ -406,5 +410,32 @@ pub fn solve_cycle(
 ) -> Result<Curve, Box<CurveFailure>> {
     let (model, estar) = validated_model(problem, opts)?;
     let mut asm = assembly::Assembly::new(&model);
-    unloading::trace_cycle(&model, &mut asm, opts, estar, on_step)
+    unloading::trace_cycle(&model, &mut asm, opts, estar, &mut |dir, p, _| {
+        on_step(dir, p)
+    })
+}
+
+/// [`solve_curve`] (or, with `unload`, [`solve_cycle`]) that also hands `on_step`, with every
+/// converged point of loading and of unloading, that point's deformed state ([`StepState`]:
+/// reference and current coordinates, each element's dilatation, the contact status,
+/// pressure, shear and slip of the face). The states are built for this caller only; the
+/// curve is the same, bit for bit, as the other entry points give.
+pub fn solve_with_states(
+    problem: &LayerProblem,
+    opts: &SolveOptions,
+    unload: bool,
+    on_step: &mut dyn FnMut(LoadDirection, &CurvePoint, &StepState),
+) -> Result<Curve, Box<CurveFailure>> {
+    let (model, estar) = validated_model(problem, opts)?;
+    let mut asm = assembly::Assembly::new(&model);
+    let mut states = step_state::StepStates::new(&model, estar, on_step);
+    if unload {
+        unloading::trace_cycle(&model, &mut asm, opts, estar, &mut |dir, p, at| {
+            states.observe(dir, p, at)
+        })
+    } else {
+        loading::trace(&model, &mut asm, opts, estar, &mut |p, at| {
+            states.observe(LoadDirection::Loading, p, at)
+        })
+    }
 }

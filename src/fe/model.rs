@@ -324,7 +324,7 @@ impl Model {
     }
 
     /// Arc length along the indenter from `x0` to `x1` as the contact law sees it.
-    fn contact_arc(&self, x0: f64, x1: f64) -> f64 {
+    pub(super) fn contact_arc(&self, x0: f64, x1: f64) -> f64 {
         match self.kin {
             Kinematics::Finite => self.indenter.arc_length(x0, x1),
             Kinematics::Linear => x1 - x0,

@@ -8,23 +8,24 @@ use super::measure::measure_between_events;
 use super::model::Model;
 use super::predictor::displacement_step;
 use super::step_control::StepCuts;
+use super::step_state::Converged;
 use super::{Curve, CurvePoint, LoadDirection, SolveOptions};
 
 /// Trace the loading branch as [`super::loading::trace`], then unload back to zero load with the friction
 /// history carried through ([`unload`]); `on_step` sees every converged point with its
-/// branch.
+/// branch and a view of its state.
 pub(crate) fn trace_cycle(
     model: &Model,
     asm: &mut Assembly,
     opts: &SolveOptions,
     estar: f64,
-    on_step: &mut dyn FnMut(LoadDirection, &CurvePoint),
+    on_step: &mut dyn FnMut(LoadDirection, &CurvePoint, Converged<'_>),
 ) -> Result<Curve, Box<CurveFailure>> {
-    let mut path = loading_branch(model, asm, opts, estar, &mut |p| {
-        on_step(LoadDirection::Loading, p)
+    let mut path = loading_branch(model, asm, opts, estar, &mut |p, at| {
+        on_step(LoadDirection::Loading, p, at)
     })?;
-    let unloading = unload(model, asm, opts, estar, &mut path, &mut |p| {
-        on_step(LoadDirection::Unloading, p)
+    let unloading = unload(model, asm, opts, estar, &mut path, &mut |p, at| {
+        on_step(LoadDirection::Unloading, p, at)
     })?;
     Ok(path.finish(model, asm, estar, unloading))
 }
@@ -54,7 +55,7 @@ fn unload(
     opts: &SolveOptions,
     estar: f64,
     path: &mut LoadPath,
-    on_step: &mut dyn FnMut(&CurvePoint),
+    on_step: &mut dyn FnMut(&CurvePoint, Converged<'_>),
 ) -> Result<Vec<CurvePoint>, Box<CurveFailure>> {
     let event_displacements: Vec<f64> = path
         .points
@@ -120,7 +121,12 @@ fn unload(
                 model.commit_slip(&mut st);
                 let (mut point, grad) = measure_between_events(model, asm, &st, estar, opts);
                 point.newton_iterations = iters;
-                on_step(&point);
+                let at = Converged {
+                    model,
+                    state: &st,
+                    grad: &grad,
+                };
+                on_step(&point, at);
                 cur_p = point.p_over_estar;
                 path.a = point.a_over_lambda;
                 path.grad = grad;

@@ -6,7 +6,7 @@
 
 #[macro_use]
 pub mod scenes;
-pub mod atomic_write;
+pub use crate::atomic_write;
 pub mod fe_cases;
 pub(crate) mod fe_inverse;
 pub mod fingertip_ridges;
