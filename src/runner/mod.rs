@@ -7,18 +7,24 @@
 #[macro_use]
 pub mod scenes;
 pub mod atomic_write;
+pub mod eval_request;
 pub mod fe_cases;
 pub(crate) mod fe_inverse;
 pub mod fingertip_ridges;
+pub mod input;
 pub mod measured;
+pub mod request_error;
 pub mod review;
 pub(crate) mod richardson_reference;
 pub(crate) mod scene_output;
+pub mod solve_outcome;
+pub mod solve_request;
 pub(crate) mod speed_accuracy_figure;
 pub mod sweep;
 pub(crate) mod tier_measurement;
 pub mod tier_timings;
 pub mod time_tiers;
+pub mod tolerance;
 pub(crate) mod wnl_beyond_fit;
 
 // The one list of scenes: `module::SectionType`, one line each (see `scenes`).
