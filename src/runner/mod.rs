@@ -61,6 +61,23 @@ pub struct SceneOutput {
     pub incomplete: Vec<String>,
 }
 
+/// Why figures that rest on FE curves that stopped short are not what was asked for (their
+/// outputs are written, marked INCOMPLETE), or `None` when every curve is complete.
+pub fn incomplete_message(outputs: &[SceneOutput]) -> Option<String> {
+    let incomplete: Vec<String> = outputs
+        .iter()
+        .flat_map(|o| o.incomplete.iter().map(move |n| format!("{}: {n}", o.stem)))
+        .collect();
+    if incomplete.is_empty() {
+        return None;
+    }
+    Some(format!(
+        "{} finite-element curve(s) stopped short of their target (the figures say INCOMPLETE):\n  {}",
+        incomplete.len(),
+        incomplete.join("\n  ")
+    ))
+}
+
 /// How a run computes expensive cases.
 #[derive(Debug, Clone, Default)]
 pub struct RunOptions {
