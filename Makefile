@@ -30,7 +30,7 @@ python-test:
 	$(CARGO) clippy --release --locked -p wavy-python --quiet -- -D warnings
 	test -x $(VENV)/bin/python || $(PYTHON) -m venv $(VENV)
 	$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check "maturin>=1.16,<1.17" pytest numpy
-	$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python
+	PATH="$(CURDIR)/$(VENV)/bin:$$PATH" $(VENV)/bin/python -m pip install --quiet --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python
 	cd python/tests && ../../$(VENV)/bin/python -m pytest -q -p no:cacheprovider
 
 lint:

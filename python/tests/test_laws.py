@@ -23,7 +23,7 @@ def test_westergaard_matches_eval(ar):
     same_digits(wavy.westergaard(ar, XS), [r["p_over_estar"] for r in rows])
 
 
-@pytest.mark.parametrize("reading", ["bracket-sq", "bracket-2x", "literal"])
+@pytest.mark.parametrize("reading", ["bracket-sq", "bracket-2x"])
 @pytest.mark.parametrize("coefficients", ["paper-table1", "ours-bracket-sq"])
 @pytest.mark.parametrize("ar,tau", [(0.1, 0.0), (0.18, 0.05), (0.3, 0.2)])
 def test_wnl_matches_eval(reading, coefficients, ar, tau):
