@@ -223,9 +223,7 @@ fn solve<'py>(
         ..SolveRequest::new(ar)
     };
     let mut raised: Option<PyErr> = None;
-    let solved = py.detach(|| {
-        solve_request::solve(&request, &mut |_| check_signals(&mut raised))
-    });
+    let solved = py.detach(|| solve_request::solve(&request, &mut |_| check_signals(&mut raised)));
     match solved {
         Ok(outcome) => {
             let d = outcome_dict(py, &outcome)?;
@@ -241,8 +239,9 @@ fn solve<'py>(
             d.set_item("stopped", (message, error.to_string()))?;
             Ok(d)
         }
-        Err(RequestError::Interrupted { .. }) => Err(raised
-            .unwrap_or_else(|| PyRuntimeError::new_err("the solve was interrupted"))),
+        Err(RequestError::Interrupted { .. }) => {
+            Err(raised.unwrap_or_else(|| PyRuntimeError::new_err("the solve was interrupted")))
+        }
         Err(other) => Err(to_py_err(other)),
     }
 }
@@ -252,7 +251,12 @@ fn solve<'py>(
 /// short (written, marked INCOMPLETE, as the command line does), a `RuntimeError`.
 #[pyfunction]
 #[pyo3(signature = (spec, out, cache=None))]
-fn run(py: Python<'_>, spec: PathBuf, out: PathBuf, cache: Option<PathBuf>) -> PyResult<Vec<String>> {
+fn run(
+    py: Python<'_>,
+    spec: PathBuf,
+    out: PathBuf,
+    cache: Option<PathBuf>,
+) -> PyResult<Vec<String>> {
     let mut options = wavy::runner::RunOptions::default();
     if let Some(c) = cache {
         options.sweep.cache_dir = c;
@@ -260,12 +264,18 @@ fn run(py: Python<'_>, spec: PathBuf, out: PathBuf, cache: Option<PathBuf>) -> P
     let ran = py.detach(|| -> anyhow::Result<(Vec<PathBuf>, Option<String>)> {
         let output = wavy::runner::run_spec_file(&spec, &options)?;
         let written = wavy::runner::write_outputs(&output, &out)?;
-        Ok((written, wavy::runner::incomplete_message(std::slice::from_ref(&output))))
+        Ok((
+            written,
+            wavy::runner::incomplete_message(std::slice::from_ref(&output)),
+        ))
     });
     match ran {
         Ok((_, Some(incomplete))) => Err(PyRuntimeError::new_err(incomplete)),
         Ok((written, None)) => Ok(written.iter().map(|p| p.display().to_string()).collect()),
-        Err(e) if e.chain().any(|c| c.is::<wavy::spec::SpecError>() || c.is::<InputError>()) => {
+        Err(e)
+            if e.chain()
+                .any(|c| c.is::<wavy::spec::SpecError>() || c.is::<InputError>()) =>
+        {
             Err(PyValueError::new_err(format!("{e:#}")))
         }
         Err(e) => Err(PyRuntimeError::new_err(format!("{e:#}"))),
@@ -274,7 +284,10 @@ fn run(py: Python<'_>, spec: PathBuf, out: PathBuf, cache: Option<PathBuf>) -> P
 
 /// The names of the load branches (`branch` column).
 fn branch_names() -> [&'static str; 2] {
-    [LoadDirection::Loading.name(), LoadDirection::Unloading.name()]
+    [
+        LoadDirection::Loading.name(),
+        LoadDirection::Unloading.name(),
+    ]
 }
 
 #[pymodule]
