@@ -8,7 +8,8 @@ import time
 
 import wavy
 
-LONG_SOLVE = "wavy.solve(ar=0.3, tau_max_mpa=0.1, mesh=96)"
+# far longer uninterrupted than the test waits (mesh 192, frictional): the signal lands mid-solve
+LONG_SOLVE = "wavy.solve(ar=0.3, tau_max_mpa=0.1, mesh=192)"
 
 
 def test_python_threads_run_during_a_solve():
@@ -48,7 +49,7 @@ def test_sigint_stops_a_long_solve_with_keyboard_interrupt():
     p = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE,
                          stderr=subprocess.PIPE, text=True)
     assert p.stdout.readline().strip() == "started"
-    time.sleep(1.5)
+    time.sleep(1.0)
     sent = time.perf_counter()
     p.send_signal(signal.SIGINT)
     out, err = p.communicate(timeout=60)
@@ -56,4 +57,4 @@ def test_sigint_stops_a_long_solve_with_keyboard_interrupt():
     assert p.returncode == 130, (p.returncode, out, err)
     assert "interrupted after" in out and "finished" not in out
     # one load step of this mesh, not the rest of the curve
-    assert stopped_within < 20, stopped_within
+    assert stopped_within < 30, stopped_within
