@@ -36,7 +36,10 @@ def test_python_threads_run_during_a_solve():
 
 def test_sigint_stops_a_long_solve_with_keyboard_interrupt():
     code = (
-        "import sys, time, wavy\n"
+        "import signal, sys, time, wavy\n"
+        # a shell that starts jobs in the background ignores SIGINT in them, and Python then
+        # leaves it ignored: install Python's own handler, as an interactive session has it
+        "signal.signal(signal.SIGINT, signal.default_int_handler)\n"
         "print('started', flush=True)\n"
         "t = time.perf_counter()\n"
         "try:\n"
