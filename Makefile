@@ -4,7 +4,7 @@
 CARGO ?= cargo
 export CARGO_TERM_COLOR ?= never
 
-.PHONY: all reproduce test lint check bless stale bench bench-solver bench-tiers fuzz clean
+.PHONY: all reproduce test python-test lint check bless stale bench bench-solver bench-tiers fuzz clean
 
 all: reproduce
 
@@ -14,9 +14,24 @@ reproduce:
 	$(CARGO) build --release --locked
 	$(CARGO) run --release --locked --quiet -- reproduce
 
-## Every test (release mode: the finite-element tests need it), after formatting and lints.
+## Every test (release mode: the finite-element tests need it), after formatting and lints; then the
+## Python package's tests.
 test: lint
 	INSTA_UPDATE=no $(CARGO) test --release --locked
+	$(MAKE) python-test
+
+## The Python package (python/, docs/python.md): a virtual environment in target/ with maturin, pytest and
+## numpy from PyPI, the wheel built (release, reusing target/) and installed, then pytest, which compares the
+## package with the binary built here. Exit 5 (no tests collected) fails like any other.
+PYTHON ?= python3
+VENV ?= target/python-venv
+python-test:
+	$(CARGO) build --release --locked
+	$(CARGO) clippy --release --locked -p wavy-python --quiet -- -D warnings
+	test -x $(VENV)/bin/python || $(PYTHON) -m venv $(VENV)
+	$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check "maturin>=1.16,<1.17" pytest numpy
+	PATH="$(CURDIR)/$(VENV)/bin:$$PATH" $(VENV)/bin/python -m pip install --quiet --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python
+	cd python/tests && ../../$(VENV)/bin/python -m pytest -q -p no:cacheprovider
 
 lint:
 	$(CARGO) fmt --check

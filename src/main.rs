@@ -95,18 +95,13 @@ fn main() -> ExitCode {
         Err(e) if is_closed_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
-            if is_input_error(&e) {
+            if cli::input::is_input_error(&e) {
                 ExitCode::from(2)
             } else {
                 ExitCode::from(1)
             }
         }
     }
-}
-
-fn is_input_error(e: &anyhow::Error) -> bool {
-    e.chain()
-        .any(|c| c.is::<cli::input::InputError>() || c.is::<wavy::spec::SpecError>())
 }
 
 fn run(cli: Cli, out: &mut Stdout) -> anyhow::Result<ExitCode> {

@@ -314,3 +314,42 @@ fn a_folder_that_cannot_be_written_is_named_and_nothing_is_left() {
     );
     assert_eq!(files_under(&dir), vec![in_the_way]);
 }
+
+/// `wavy solve --vtk DIR` writes one step per CSV row and the collection, whose times are the
+/// rows' slab displacements; a curve that stops short writes no series.
+#[test]
+fn the_command_line_writes_the_series_of_its_rows() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let out = dir.path().join("series");
+    let run = |extra: &[&str], vtk: &Path| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_wavy"))
+            .args(["solve", "--ar", "0.3"])
+            .args(extra)
+            .arg("--vtk")
+            .arg(vtk)
+            .output()
+            .expect("wavy runs")
+    };
+    let o = run(&["--mesh", "16", "--until-a-over-lambda", "0.3"], &out);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = String::from_utf8(o.stdout).expect("UTF-8");
+    let displacements: Vec<String> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(3).expect("four columns").to_string())
+        .collect();
+    let entries = collection_entries(&out.join(COLLECTION_FILE));
+    assert_eq!(entries.len(), displacements.len());
+    for (i, ((file, time, _), d)) in entries.iter().zip(&displacements).enumerate() {
+        assert_eq!(time, d, "step {i}");
+        assert_eq!(file, &step_file_name(i));
+        assert!(out.join(file).is_file());
+    }
+    let stopped = dir.path().join("stopped");
+    let o = run(&["--mesh", "8", "--until-a-over-lambda", "0.45"], &stopped);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        !stopped.exists(),
+        "a curve that stops short writes no series"
+    );
+}

@@ -1,12 +1,11 @@
 //! `wavy eval`: a closed-form law, forward (a/λ → p̄/E*) or inverse (p̄/E* → a/λ), as CSV.
 
-use super::input::{non_negative, one_of, out_of_range, positive, InputError};
-use anyhow::{Context, Result};
+use super::input::{non_negative, one_of, positive};
+use anyhow::Result;
 use std::io::Write;
 use wavy::accuracy::Tier;
-use wavy::models::{
-    a_over_lambda_at, CoefficientSet, InverseError, ModelKind, ModelLaw, PressureLaw, Reading,
-};
+use wavy::models::{CoefficientSet, ModelKind, Reading};
+use wavy::runner::eval_request::LawRequest;
 
 /// The CSV header of `wavy eval`.
 pub const HEADER: &str =
@@ -48,7 +47,8 @@ pub struct EvalArgs {
     pub p_over_estar: Vec<f64>,
 }
 
-/// Runs `wavy eval`, writing CSV to `out`; an [`InputError`] names the flag.
+/// Runs `wavy eval`, writing CSV to `out`; an input error names the flag. The evaluation is the
+/// library's (`wavy::runner::eval_request`, `wavy::runner::tolerance`).
 pub fn eval(args: &EvalArgs, out: &mut impl Write) -> Result<()> {
     positive("--ar", args.ar)?;
     non_negative("--tau-max-mpa", args.tau_max_mpa)?;
@@ -70,63 +70,21 @@ pub fn eval(args: &EvalArgs, out: &mut impl Write) -> Result<()> {
     let model = args
         .model
         .expect("clap requires --model without --tolerance");
-    let law = ModelLaw::new(
+    let request = LawRequest {
         model,
-        args.ar,
-        args.tau_max_mpa,
-        args.reading,
-        args.coefficients,
-    );
-    let (reading, coefficients) = match model {
-        ModelKind::Westergaard => ("", ""),
-        ModelKind::Wnl => (args.reading.name(), args.coefficients.name()),
+        ar: args.ar,
+        tau_max_mpa: args.tau_max_mpa,
+        reading: args.reading,
+        coefficients: args.coefficients,
     };
-    // the inputs that produced a value, for messages
-    let inputs = match model {
-        ModelKind::Westergaard => format!("--model westergaard --ar {:?}", args.ar),
-        ModelKind::Wnl => format!(
-            "--model wnl --reading {reading} --coefficients {coefficients} --ar {:?} --tau-max-mpa {:?}",
-            args.ar, args.tau_max_mpa
-        ),
-    };
+    let (reading, coefficients) = request.reading_and_coefficients();
     // every input is checked before the first row is written
-    let mut rows = vec![];
-    for &x in &args.a_over_lambda {
-        if !(x.is_finite() && (0.0..=0.5).contains(&x)) {
-            return Err(out_of_range("--a-over-lambda", x, "[0, 0.5]").into());
-        }
-        let p = law
-            .physical_p_over_estar(x)
-            .with_context(|| format!("{inputs} --a-over-lambda {x:?}"))?;
-        rows.push((x, p, law.is_extrapolated()));
-    }
-    for &p in &args.p_over_estar {
-        let full = law.full_contact_p_over_estar();
-        let x = a_over_lambda_at(&law, p).map_err(|e| -> anyhow::Error {
-            match e {
-                InverseError::NegativeOrNotFinite { .. } => {
-                    out_of_range("--p-over-estar", p, ">= 0").into()
-                }
-                // a computation that failed, not a bad value: exit 1
-                InverseError::NotFinite { .. } => {
-                    anyhow::Error::new(e).context(format!("{inputs} --p-over-estar {p}"))
-                }
-                InverseError::AboveFullContact { .. } => out_of_range(
-                    "--p-over-estar",
-                    p,
-                    format!("[0, {full}] (the full-contact pressure of this model)"),
-                )
-                .into(),
-                other => InputError::NotInvertible {
-                    flag: "--p-over-estar".into(),
-                    value: p.to_string(),
-                    reason: other.to_string(),
-                }
-                .into(),
-            }
-        })?;
-        rows.push((x, p, law.is_extrapolated()));
-    }
+    let mut rows = request.forward(&args.a_over_lambda)?;
+    rows.extend(request.inverse(&args.p_over_estar)?);
+    let rows: Vec<(f64, f64, bool)> = rows
+        .iter()
+        .map(|r| (r.a_over_lambda, r.p_over_estar, r.extrapolated))
+        .collect();
     write_rows(out, model.key(), reading, coefficients, args, &rows)
 }
 

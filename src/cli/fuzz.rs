@@ -3,7 +3,7 @@
 //! finite, non-negative pressure. Case count: `WAVY_FUZZ_CASES` (default 10 000; `make fuzz`
 //! sets 1 000 000).
 
-use super::input::{normalise_negative_numbers, InputError};
+use super::input::normalise_negative_numbers;
 use crate::{Cli, Command};
 use clap::Parser;
 use proptest::prelude::*;
@@ -175,7 +175,7 @@ fn random_command_lines_are_answered_or_refused_by_flag() {
                     refused.fetch_add(1, Ordering::Relaxed);
                     let text = format!("{e:#}");
                     // an input error names its flag; a failed computation names its inputs
-                    let input = e.chain().any(|c| c.is::<InputError>());
+                    let input = super::input::is_input_error(&e);
                     prop_assert!(
                         text.contains("--"),
                         "{:?}: {} (input error: {})",

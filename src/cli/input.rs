@@ -1,63 +1,21 @@
-//! Command-line values that cannot be used, and the parsers that name the flag, the value and
-//! the allowed range.
+//! Command-line values that cannot be used (the checks and messages are the library's,
+//! `wavy::runner::input`), and the clap parsers that name the flag, the value and the allowed range.
 
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use std::str::FromStr;
-use thiserror::Error;
 use wavy::fe::MeshLevel;
+pub use wavy::runner::input::{non_negative, out_of_range, positive, InputError};
+use wavy::runner::request_error::RequestError;
 
-/// A command-line value that cannot be used (exit code 2).
-#[derive(Debug, Error)]
-pub enum InputError {
-    /// Outside its physical range.
-    #[error("{flag} = {value} is out of range; allowed: {allowed}")]
-    OutOfRange {
-        flag: String,
-        value: String,
-        allowed: String,
-    },
-    /// In range, but the selected model cannot be inverted there.
-    #[error("{flag} = {value}: no contact half-width: {reason}")]
-    NotInvertible {
-        flag: String,
-        value: String,
-        reason: String,
-    },
-    /// A valid value that this command cannot serve (a tolerance no measured tier meets, a
-    /// point outside the measured region, a spec of another kind).
-    #[error("{flag} = {value}: {reason}")]
-    Refused {
-        flag: String,
-        value: String,
-        reason: String,
-    },
-}
-
-/// An [`InputError::OutOfRange`].
-pub fn out_of_range(flag: &str, value: impl ToString, allowed: impl ToString) -> InputError {
-    InputError::OutOfRange {
-        flag: flag.into(),
-        value: value.to_string(),
-        allowed: allowed.to_string(),
-    }
-}
-
-/// `Ok` when `value` is finite and `> 0`, else an error naming `flag`.
-pub fn positive(flag: &str, value: f64) -> Result<(), InputError> {
-    if value.is_finite() && value > 0.0 {
-        Ok(())
-    } else {
-        Err(out_of_range(flag, value, "> 0"))
-    }
-}
-
-/// `Ok` when `value` is finite and `>= 0`, else an error naming `flag`.
-pub fn non_negative(flag: &str, value: f64) -> Result<(), InputError> {
-    if value.is_finite() && value >= 0.0 {
-        Ok(())
-    } else {
-        Err(out_of_range(flag, value, ">= 0"))
-    }
+/// True when `e` is (or was caused by) an input that cannot be used, an unusable request or an
+/// invalid spec: exit 2.
+pub fn is_input_error(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| {
+        c.is::<InputError>()
+            || c.is::<wavy::spec::SpecError>()
+            || c.downcast_ref::<RequestError>()
+                .is_some_and(RequestError::is_input)
+    })
 }
 
 /// A parser that accepts exactly `names` (listed in `--help` and in clap's error) and turns
@@ -71,14 +29,10 @@ where
         .map(|name: String| name.parse::<T>().expect("every listed name parses"))
 }
 
-/// `--mesh`: a named level or an element count along the contact face.
+/// `--mesh`: a named level or an element count along the contact face (the library's check,
+/// its message for clap).
 pub fn mesh(s: &str) -> Result<MeshLevel, String> {
-    s.parse::<MeshLevel>().map_err(|_| {
-        format!(
-            "--mesh = {s} is out of range; allowed: {}",
-            MeshLevel::ALLOWED
-        )
-    })
+    wavy::runner::input::mesh(s).map_err(|e| e.to_string())
 }
 
 /// Flags that take a list of numbers.

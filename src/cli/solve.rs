@@ -1,14 +1,15 @@
 //! `wavy solve`: one finite-element load curve, one CSV row per converged load step.
 
-use super::input::{non_negative, one_of, out_of_range, positive, InputError};
+use super::input::one_of;
 use anyhow::Result;
 use std::io::{IsTerminal, Write};
+use std::ops::ControlFlow;
 use std::process::ExitCode;
 use wavy::defaults;
-use wavy::fe::{
-    self, CurvePoint, Kinematics, LayerProblem, LoadDirection, MeshLevel, SolveOptions,
-};
-use wavy::runner::fe_cases::{FeCase, FePhysics};
+use wavy::fe::{Kinematics, MeshLevel};
+use wavy::runner::request_error::RequestError;
+use wavy::runner::solve_outcome::SolveRow;
+use wavy::runner::solve_request::{PreparedSolve, SolveRequest};
 
 /// Arguments of `wavy solve`.
 #[derive(Debug, Clone, clap::Args)]
@@ -62,51 +63,49 @@ pub struct SolveArgs {
     /// (loading, unloading) says which branch each row is on.
     #[arg(long, conflicts_with = "error_estimate")]
     pub unload: bool,
+    /// Also write the deformed state of every converged point into this folder for ParaView:
+    /// one step_NNNN.vtu per point (displacement, reference position, contact status,
+    /// pressure, shear and slip on the face, J per element) and series.pvd, the time series
+    /// (time: the slab displacement d/λ; on unloading, the slab travel 2 d_max − d). Written
+    /// only when the curve is complete.
+    #[arg(long, value_name = "DIR")]
+    pub vtk: Option<std::path::PathBuf>,
 }
 
 impl SolveArgs {
-    /// The solver's problem and options, or an error naming the flag ([`InputError`]).
-    pub fn setup(&self) -> Result<(LayerProblem, SolveOptions)> {
-        positive("--ar", self.ar)?;
-        positive("--estar-mpa", self.estar_mpa)?;
-        positive("--kappa-over-g", self.kappa_over_g)?;
-        positive("--thickness-over-lambda", self.thickness_over_lambda)?;
-        non_negative("--tau-max-mpa", self.tau_max_mpa)?;
-        non_negative("--mu", self.mu)?;
-        let x = self.until_a_over_lambda;
-        if !(x.is_finite() && x > 0.0 && x < 0.5) {
-            return Err(out_of_range("--until-a-over-lambda", x, "(0, 0.5)").into());
-        }
-        if let Some(p) = self.until_p_over_estar {
-            positive("--until-p-over-estar", p)?;
-        }
-        let physics = FePhysics {
+    /// The library's request: the same fields (`--ar` is `ar`, …).
+    pub fn request(&self) -> SolveRequest {
+        SolveRequest {
+            ar: self.ar,
+            tau_max_mpa: self.tau_max_mpa,
+            mu: self.mu,
             estar_mpa: self.estar_mpa,
-            thickness_over_lambda: self.thickness_over_lambda,
             kappa_over_g: self.kappa_over_g,
-            friction_coefficient: self.mu,
-            elastic_slip_over_element: defaults::elastic_slip_over_element(),
+            thickness_over_lambda: self.thickness_over_lambda,
             kinematics: self.kinematics,
-        };
-        let mesh = match self.tolerance {
-            Some(t) => super::tolerance::solve_mesh(t, self.ar, self.tau_max_mpa, &physics, x)?,
-            None => self.mesh,
-        };
-        let options = SolveOptions {
-            until_a_over_lambda: x,
+            mesh: self.mesh,
+            tolerance: self.tolerance,
+            error_estimate: self.error_estimate,
+            until_a_over_lambda: self.until_a_over_lambda,
             until_p_over_estar: self.until_p_over_estar,
-            mesh,
-            ..SolveOptions::default()
-        };
-        let case = FeCase::new(&physics, self.ar, self.tau_max_mpa, options);
-        Ok((case.problem, case.options))
+            unload: self.unload,
+        }
+    }
+
+    /// The checked request (the mesh chosen), or an error naming the flag.
+    pub fn setup(&self) -> Result<PreparedSolve> {
+        Ok(self.request().prepare()?)
     }
 }
 
 /// Runs `wavy solve`: the header, then each converged point as soon as it is known; exit 1,
-/// after the converged rows, when the solver cannot go on.
+/// after the converged rows, when the solver cannot go on. The solve is the library's
+/// (`wavy::runner::solve_request`); this layer prints.
 pub fn solve(args: &SolveArgs, out: &mut impl Write) -> Result<ExitCode> {
-    let (problem, opts) = args.setup()?;
+    let prepared = args.setup()?;
+    if let (Some(choice), Some(t)) = (&prepared.tolerance_choice, args.tolerance) {
+        super::tolerance::announce(choice, t);
+    }
     let bar = std::io::stderr().is_terminal().then(|| {
         let b = indicatif::ProgressBar::new_spinner();
         b.set_style(
@@ -116,74 +115,32 @@ pub fn solve(args: &SolveArgs, out: &mut impl Write) -> Result<ExitCode> {
         b
     });
     // the Richardson estimate needs the next coarser curve first
-    let coarse = match args.error_estimate {
-        false => None,
-        true => {
-            let (level, ratio) =
-                wavy::accuracy::coarser_level(opts.mesh).ok_or_else(|| InputError::Refused {
-                    flag: "--error-estimate".into(),
-                    value: format!("{:?}", opts.mesh),
-                    reason: "no coarser mesh of at least 4 elements along the face".into(),
-                })?;
-            let order = wavy::accuracy::measured::committed()?.fe_order()?;
-            if let Some(b) = &bar {
-                b.set_message("the coarser mesh of the error estimate");
-            }
-            let coarse_opts = SolveOptions {
-                mesh: level,
-                ..opts
-            };
-            let curve = fe::solve_curve(&problem, &coarse_opts, &mut |_| {}).map_err(|f| {
-                let reached = f.points.last().map_or(0.0, |p| p.a_over_lambda);
-                anyhow::anyhow!(
-                    "the error estimate needs the curve on the coarser mesh {}×{}, which stops at a/λ = {reached:.4}: {}; choose a finer --mesh",
-                    level.counts().0,
-                    level.counts().1,
-                    f.error
-                )
-            })?;
-            Some((curve.points, ratio, order))
-        }
-    };
-    let estimate = |p: &CurvePoint| -> String {
-        coarse.as_ref().map_or(String::new(), |(c, ratio, order)| {
-            let e = wavy::fe::convergence::p_at(c, p.a_over_lambda).map(|pc| {
-                wavy::accuracy::richardson_relative_error(pc, p.p_over_estar, *ratio, *order)
-            });
-            format!(",{}", e.map_or(String::new(), |e| e.to_string()))
-        })
-    };
-    let header_extra = match (coarse.is_some(), args.unload) {
-        (true, _) => ",error_estimate",
-        (false, true) => ",branch",
-        (false, false) => "",
-    };
-    writeln!(out, "{}{header_extra}", CurvePoint::CSV_HEADER)?;
+    if let (Some(b), true) = (&bar, args.error_estimate) {
+        b.set_message("the coarser mesh of the error estimate");
+    }
+    let coarse = prepared.coarse_reference(&mut || ControlFlow::Continue(()))?;
+    writeln!(out, "{}", prepared.csv_header())?;
+    let extra = prepared.extra_column();
     let mut write_error = None;
-    let mut on_step = |branch: LoadDirection, p: &CurvePoint| {
+    let mut on_row = |row: &SolveRow| {
+        let p = &row.point;
         if let Some(b) = &bar {
             b.set_message(format!(
                 "{}: a/λ = {:.4}, p̄/E* = {:.5}",
-                branch.name(),
+                row.branch.name(),
                 p.a_over_lambda,
                 p.p_over_estar
             ));
             b.tick();
         }
         if write_error.is_none() {
-            let extra = match args.unload {
-                true => format!(",{}", branch.name()),
-                false => estimate(p),
-            };
-            if let Err(e) = writeln!(out, "{}{extra}", p.csv_row()) {
+            if let Err(e) = writeln!(out, "{}", row.csv_line(extra)) {
                 write_error = Some(e);
             }
         }
+        ControlFlow::Continue(())
     };
-    let result = match args.unload {
-        true => fe::solve_cycle(&problem, &opts, &mut on_step),
-        false => fe::solve_curve(&problem, &opts, &mut |p| on_step(LoadDirection::Loading, p)),
-    };
+    let result = prepared.run(coarse.as_ref(), args.vtk.as_deref(), &mut on_row);
     if let Some(b) = bar {
         b.finish_and_clear();
     }
@@ -192,9 +149,10 @@ pub fn solve(args: &SolveArgs, out: &mut impl Write) -> Result<ExitCode> {
     }
     match result {
         Ok(_) => Ok(ExitCode::SUCCESS),
-        Err(failure) => {
-            eprintln!("error: the solver stopped: {}", failure.error);
+        Err(stopped @ RequestError::Stopped { .. }) => {
+            eprintln!("error: {stopped}");
             Ok(ExitCode::from(1))
         }
+        Err(other) => Err(other.into()),
     }
 }

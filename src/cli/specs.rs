@@ -63,18 +63,10 @@ pub fn run(
 /// Exit 1 when a figure rests on incomplete FE curves: the outputs are written, marked
 /// INCOMPLETE, but they are not what was asked for.
 fn refuse_incomplete(outputs: &[SceneOutput]) -> Result<()> {
-    let incomplete: Vec<String> = outputs
-        .iter()
-        .flat_map(|o| o.incomplete.iter().map(move |n| format!("{}: {n}", o.stem)))
-        .collect();
-    if incomplete.is_empty() {
-        return Ok(());
+    match runner::incomplete_message(outputs) {
+        None => Ok(()),
+        Some(message) => anyhow::bail!("{message}"),
     }
-    anyhow::bail!(
-        "{} finite-element curve(s) stopped short of their target (the figures say INCOMPLETE):\n  {}",
-        incomplete.len(),
-        incomplete.join("\n  ")
-    )
 }
 
 /// `wavy reproduce`: every spec of a folder, all parsed before anything is computed or written.

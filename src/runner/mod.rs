@@ -7,18 +7,24 @@
 #[macro_use]
 pub mod scenes;
 pub use crate::atomic_write;
+pub mod eval_request;
 pub mod fe_cases;
 pub(crate) mod fe_inverse;
 pub mod fingertip_ridges;
+pub mod input;
 pub mod measured;
+pub mod request_error;
 pub mod review;
 pub(crate) mod richardson_reference;
 pub(crate) mod scene_output;
+pub mod solve_outcome;
+pub mod solve_request;
 pub(crate) mod speed_accuracy_figure;
 pub mod sweep;
 pub(crate) mod tier_measurement;
 pub mod tier_timings;
 pub mod time_tiers;
+pub mod tolerance;
 pub(crate) mod wnl_beyond_fit;
 
 // The one list of scenes: `module::SectionType`, one line each (see `scenes`).
@@ -53,6 +59,23 @@ pub struct SceneOutput {
     pub notes: Vec<String>,
     /// FE curves that stopped short of their target (see [`SceneResult::incomplete`]).
     pub incomplete: Vec<String>,
+}
+
+/// Why figures that rest on FE curves that stopped short are not what was asked for (their
+/// outputs are written, marked INCOMPLETE), or `None` when every curve is complete.
+pub fn incomplete_message(outputs: &[SceneOutput]) -> Option<String> {
+    let incomplete: Vec<String> = outputs
+        .iter()
+        .flat_map(|o| o.incomplete.iter().map(move |n| format!("{}: {n}", o.stem)))
+        .collect();
+    if incomplete.is_empty() {
+        return None;
+    }
+    Some(format!(
+        "{} finite-element curve(s) stopped short of their target (the figures say INCOMPLETE):\n  {}",
+        incomplete.len(),
+        incomplete.join("\n  ")
+    ))
 }
 
 /// How a run computes expensive cases.
