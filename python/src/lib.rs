@@ -13,7 +13,7 @@ use std::path::PathBuf;
 use std::str::FromStr;
 use wavy::fe::{Kinematics, LoadDirection};
 use wavy::models::{CoefficientSet, ModelKind, Reading};
-use wavy::runner::eval_request::{LawRequest, LawRow};
+use wavy::runner::eval_request::LawRequest;
 use wavy::runner::input::{self, out_of_range, InputError};
 use wavy::runner::request_error::{full_message, RequestError};
 use wavy::runner::solve_outcome::{ExtraColumn, SolveOutcome};
@@ -60,67 +60,41 @@ fn law_request(
     })
 }
 
-/// The evaluated rows as (a/λ, p̄/E*, extrapolated) arrays.
-#[allow(clippy::type_complexity)]
-fn law_arrays<'py>(
-    py: Python<'py>,
-    rows: &[LawRow],
-) -> (
+/// (a/λ, p̄/E*, extrapolated) arrays, one entry per evaluated point.
+type LawArrays<'py> = (
     Bound<'py, PyArray1<f64>>,
     Bound<'py, PyArray1<f64>>,
     Bound<'py, PyArray1<bool>>,
-) {
-    (
+);
+
+/// `wavy eval --model MODEL …` at `values`: with `inverse` false they are a/λ
+/// (`--a-over-lambda XS`), with `inverse` true p̄/E* (`--p-over-estar PS`); the rows as
+/// [`LawArrays`].
+#[pyfunction]
+#[pyo3(signature = (model, ar, tau_max_mpa, reading, coefficients, values, inverse))]
+#[allow(clippy::too_many_arguments)] // one argument per `wavy eval` flag, as Python passes them
+fn law<'py>(
+    py: Python<'py>,
+    model: &str,
+    ar: f64,
+    tau_max_mpa: f64,
+    reading: &str,
+    coefficients: &str,
+    values: PyReadonlyArray1<'py, f64>,
+    inverse: bool,
+) -> PyResult<LawArrays<'py>> {
+    let request = law_request(model, ar, tau_max_mpa, reading, coefficients)?;
+    let values = values.as_slice()?;
+    let rows = match inverse {
+        false => request.forward(values),
+        true => request.inverse(values),
+    }
+    .map_err(to_py_err)?;
+    Ok((
         PyArray1::from_iter(py, rows.iter().map(|r| r.a_over_lambda)),
         PyArray1::from_iter(py, rows.iter().map(|r| r.p_over_estar)),
         PyArray1::from_iter(py, rows.iter().map(|r| r.extrapolated)),
-    )
-}
-
-/// `wavy eval --model MODEL … --a-over-lambda XS`: (a/λ, p̄/E*, extrapolated) arrays.
-#[pyfunction]
-#[allow(clippy::type_complexity)]
-fn law_forward<'py>(
-    py: Python<'py>,
-    model: &str,
-    ar: f64,
-    tau_max_mpa: f64,
-    reading: &str,
-    coefficients: &str,
-    a_over_lambda: PyReadonlyArray1<'py, f64>,
-) -> PyResult<(
-    Bound<'py, PyArray1<f64>>,
-    Bound<'py, PyArray1<f64>>,
-    Bound<'py, PyArray1<bool>>,
-)> {
-    let request = law_request(model, ar, tau_max_mpa, reading, coefficients)?;
-    let rows = request
-        .forward(a_over_lambda.as_slice()?)
-        .map_err(to_py_err)?;
-    Ok(law_arrays(py, &rows))
-}
-
-/// `wavy eval --model MODEL … --p-over-estar PS`: (a/λ, p̄/E*, extrapolated) arrays.
-#[pyfunction]
-#[allow(clippy::type_complexity)]
-fn law_inverse<'py>(
-    py: Python<'py>,
-    model: &str,
-    ar: f64,
-    tau_max_mpa: f64,
-    reading: &str,
-    coefficients: &str,
-    p_over_estar: PyReadonlyArray1<'py, f64>,
-) -> PyResult<(
-    Bound<'py, PyArray1<f64>>,
-    Bound<'py, PyArray1<f64>>,
-    Bound<'py, PyArray1<bool>>,
-)> {
-    let request = law_request(model, ar, tau_max_mpa, reading, coefficients)?;
-    let rows = request
-        .inverse(p_over_estar.as_slice()?)
-        .map_err(to_py_err)?;
-    Ok(law_arrays(py, &rows))
+    ))
 }
 
 /// The columns and metadata of an outcome, as a dict (`wavy.Result` wraps it).
@@ -299,8 +273,7 @@ fn branch_names() -> [&'static str; 2] {
 
 #[pymodule]
 fn _wavy(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(law_forward, m)?)?;
-    m.add_function(wrap_pyfunction!(law_inverse, m)?)?;
+    m.add_function(wrap_pyfunction!(law, m)?)?;
     m.add_function(wrap_pyfunction!(solve, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add("BRANCHES", branch_names())?;

@@ -45,18 +45,22 @@ def _flat(values: ArrayLike) -> Tuple[np.ndarray, Tuple[int, ...]]:
     return np.ascontiguousarray(array.ravel()), array.shape
 
 
+def _law(model, ar, tau_max_mpa, values, reading, coefficients, inverse):
+    """The law's answer at each value, shaped like ``values``: p̄/E* at each a/λ, or with
+    ``inverse`` a/λ at each p̄/E* (``wavy eval``)."""
+    flat, shape = _flat(values)
+    x, p, _ = _wavy.law(model, float(ar), float(tau_max_mpa), reading, coefficients, flat, inverse)
+    return (x if inverse else p).reshape(shape)
+
+
 def westergaard(ar: float, a_over_lambda: ArrayLike) -> np.ndarray:
     """p̄/E* of Westergaard's law at each a/λ in [0, 0.5] (``wavy eval --model westergaard``)."""
-    xs, shape = _flat(a_over_lambda)
-    _, p, _ = _wavy.law_forward("westergaard", float(ar), 0.0, "bracket-sq", "paper-table1", xs)
-    return p.reshape(shape)
+    return _law("westergaard", ar, 0.0, a_over_lambda, "bracket-sq", "paper-table1", False)
 
 
 def westergaard_inverse(ar: float, p_over_estar: ArrayLike) -> np.ndarray:
     """a/λ of Westergaard's law at each p̄/E* (``wavy eval --model westergaard --p-over-estar``)."""
-    ps, shape = _flat(p_over_estar)
-    x, _, _ = _wavy.law_inverse("westergaard", float(ar), 0.0, "bracket-sq", "paper-table1", ps)
-    return x.reshape(shape)
+    return _law("westergaard", ar, 0.0, p_over_estar, "bracket-sq", "paper-table1", True)
 
 
 def wnl(
@@ -67,9 +71,7 @@ def wnl(
     coefficients: str = "paper-table1",
 ) -> np.ndarray:
     """p̄/E* of the WNL model at each a/λ (``wavy eval --model wnl``); τ_max in MPa."""
-    xs, shape = _flat(a_over_lambda)
-    _, p, _ = _wavy.law_forward("wnl", float(ar), float(tau_max_mpa), reading, coefficients, xs)
-    return p.reshape(shape)
+    return _law("wnl", ar, tau_max_mpa, a_over_lambda, reading, coefficients, False)
 
 
 def wnl_inverse(
@@ -80,9 +82,7 @@ def wnl_inverse(
     coefficients: str = "paper-table1",
 ) -> np.ndarray:
     """a/λ of the WNL model at each p̄/E* (``wavy eval --model wnl --p-over-estar``)."""
-    ps, shape = _flat(p_over_estar)
-    x, _, _ = _wavy.law_inverse("wnl", float(ar), float(tau_max_mpa), reading, coefficients, ps)
-    return x.reshape(shape)
+    return _law("wnl", ar, tau_max_mpa, p_over_estar, reading, coefficients, True)
 
 
 class Result:

@@ -185,31 +185,28 @@ pub(crate) fn loading_branch(
         model.commit_slip(&mut st);
         let (mut point, grad) = measure(model, asm, &st, estar, k, opts.edge_rule);
         point.newton_iterations = iters;
-        if let Some(target) = opts.until_p_over_estar.filter(|&t| point.p_over_estar > t) {
-            // the event overshoots the pressure target: land on it between the last
-            // converged state and this event instead
-            let event = (st.d, point.p_over_estar);
-            let overshoot = Overshoot {
-                below: &path.cur,
-                below_p_over_estar: path.points.last().map_or(0.0, |p| p.p_over_estar),
-                node: k,
-                event,
-            };
-            match land_on_pressure(model, asm, opts, estar, overshoot, target) {
-                Ok((st, mut point, grad, it)) => {
-                    point.newton_iterations = iters + it;
-                    let at = Converged {
-                        model,
-                        state: &st,
-                        grad: &grad,
-                    };
-                    on_step(&point, at);
-                    path.advance(st, point, grad, None);
-                    break;
+        let overshot = opts.until_p_over_estar.filter(|&t| point.p_over_estar > t);
+        // the event that overshoots the pressure target is replaced by the state on it,
+        // between the last converged state and this event
+        let (st, point, grad, extrapolated) = match overshot {
+            None => (st, point, grad, extrapolated),
+            Some(target) => {
+                let event = (st.d, point.p_over_estar);
+                let overshoot = Overshoot {
+                    below: &path.cur,
+                    below_p_over_estar: path.points.last().map_or(0.0, |p| p.p_over_estar),
+                    node: k,
+                    event,
+                };
+                match land_on_pressure(model, asm, opts, estar, overshoot, target) {
+                    Ok((st, mut point, grad, it)) => {
+                        point.newton_iterations = iters + it;
+                        (st, point, grad, None)
+                    }
+                    Err(f) => return Err(path.fail(f.into_error(step, event.0))),
                 }
-                Err(f) => return Err(path.fail(f.into_error(step, event.0))),
             }
-        }
+        };
         let at = Converged {
             model,
             state: &st,
@@ -217,6 +214,9 @@ pub(crate) fn loading_branch(
         };
         on_step(&point, at);
         path.advance(st, point, grad, extrapolated);
+        if overshot.is_some() {
+            break; // on the pressure target
+        }
         step += 1;
     }
     if let Some(target) = opts.until_p_over_estar {
