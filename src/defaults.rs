@@ -39,6 +39,7 @@ pub fn elastic_slip_over_element() -> f64 {
 pub fn layer_problem(aspect_ratio: f64) -> crate::fe::LayerProblem {
     crate::fe::LayerProblem {
         aspect_ratio,
+        finer_harmonics: crate::profile::FinerHarmonics::NONE,
         thickness_over_lambda: thickness_over_lambda(),
         kappa_over_g: kappa_over_g(),
         kinematics: crate::fe::Kinematics::Finite,

@@ -5,7 +5,8 @@
 //! - the core, with no I/O: [`models`] (Westergaard and the WNL model, their coefficient sets
 //!   and inverse), [`fe`] (the finite-strain finite-element solver), [`fit`] (re-deriving
 //!   Table 1), [`accuracy`] (the tiers that answer p̄(a), their measured errors and costs, and
-//!   the choice of the cheapest that meets a tolerance), [`csv_text`] (the one reader of our CSV
+//!   the choice of the cheapest that meets a tolerance), [`profile`] (even periodic surface profiles
+//!   as cosine harmonics), [`csv_text`] (the one reader of our CSV
 //!   tables as text);
 //! - output primitives: [`numfmt`] (the one float formatter), [`table`] (tables, CSV,
 //!   comparison), [`plot`] (deterministic SVG), [`vtk`] (the deformed states as a ParaView
@@ -25,6 +26,7 @@ pub mod fit;
 pub mod models;
 pub mod numfmt;
 pub mod plot;
+pub mod profile;
 pub mod runner;
 pub mod spec;
 pub mod table;

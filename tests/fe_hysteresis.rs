@@ -12,6 +12,7 @@ use wavy::runner::hysteresis::CLOSURE_RTOL;
 fn problem(aspect_ratio: f64, tau_max_over_estar: f64) -> LayerProblem {
     LayerProblem {
         aspect_ratio,
+        finer_harmonics: wavy::profile::FinerHarmonics::NONE,
         thickness_over_lambda: 1.0,
         kappa_over_g: 1000.0,
         kinematics: Kinematics::Finite,

@@ -8,7 +8,10 @@ use std::path::{Path, PathBuf};
 
 /// Bottom first: each layer's top-level modules of `src/lib.rs`.
 const LAYERS: &[(&str, &[&str])] = &[
-    ("core", &["models", "fe", "fit", "accuracy", "csv_text"]),
+    (
+        "core",
+        &["models", "fe", "fit", "accuracy", "profile", "csv_text"],
+    ),
     (
         "output primitives",
         &["numfmt", "table", "plot", "vtk", "atomic_write"],

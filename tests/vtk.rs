@@ -204,9 +204,7 @@ fn face_pressures_integrate_to_the_mean_pressure() {
     let (_, steps) = loading();
     let dir = tempfile::tempdir().unwrap();
     let written = write_series(dir.path(), steps).unwrap();
-    let indenter = Indenter {
-        amplitude: ASPECT_RATIO,
-    };
+    let indenter = Indenter::sinusoid(ASPECT_RATIO);
     let mut worst: f64 = 0.0;
     for (path, step) in written.iter().zip(steps) {
         let piece = read_piece(path);

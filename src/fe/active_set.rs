@@ -93,7 +93,7 @@ fn active_set_passes(
             .iter()
             .fold(0.0_f64, |m, l| m.max(l.abs()))
             .max(MULTIPLIER_SCALE_FLOOR);
-        let gap_tol = opts.gap_tolerance_over_amplitude * model.indenter.amplitude;
+        let gap_tol = opts.gap_tolerance_over_amplitude * model.indenter.amplitude();
         let mut changed = false;
         for k in 0..st.active.len() {
             if st.active[k] {

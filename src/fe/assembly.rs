@@ -415,6 +415,7 @@ mod tests {
     fn sheared(mu: f64, elastic_slip_over_element: f64) -> (Model, Assembly, State) {
         let problem = LayerProblem {
             aspect_ratio: 0.3,
+            finer_harmonics: crate::profile::FinerHarmonics::NONE,
             thickness_over_lambda: 1.0,
             kappa_over_g: 1000.0,
             kinematics: Kinematics::Finite,

@@ -1,6 +1,7 @@
-//! Rigid sinusoidal indenter and normal contact.
+//! Rigid indenter and normal contact.
 //!
-//! Indenter surface (units of λ, amplitude `Δ/λ = AR`):
+//! Indenter surface (units of λ): an even periodic profile ([`crate::profile`]), for a single
+//! sinusoid of amplitude `Δ/λ = AR`:
 //!
 //! ```text
 //! y_s(x)   = −Δ (1 − cos 2πx)
@@ -34,26 +35,38 @@
 //! With [`super::Interface::CoulombOrowan`] an active node also carries a tangential
 //! friction force; its law, return mapping and tangent rows are in [`super::friction`].
 
-/// Rigid sinusoidal indenter `y_s(x) = −Δ (1 − cos 2πx)`.
+use crate::profile::Profile;
+
+/// Rigid indenter of an even periodic profile ([`Profile`]; the single sinusoid
+/// `y_s(x) = −Δ (1 − cos 2πx)` is `1:AR`).
 #[derive(Clone, Copy, Debug)]
 pub struct Indenter {
-    /// Amplitude `Δ/λ` (the aspect ratio).
-    pub amplitude: f64,
+    /// The surface profile.
+    pub profile: Profile,
 }
 
 impl Indenter {
+    /// The single sinusoid of amplitude `Δ/λ = AR`.
+    pub fn sinusoid(aspect_ratio: f64) -> Self {
+        Self {
+            profile: Profile::sinusoid(aspect_ratio),
+        }
+    }
+    /// The scale of gaps and of the first load step: `Σ Δ_k/λ` (`Δ/λ` of a sinusoid).
+    pub fn amplitude(&self) -> f64 {
+        self.profile.amplitude_sum()
+    }
     /// `y_s(x)`.
     pub fn y(&self, x: f64) -> f64 {
-        -self.amplitude * (1.0 - (std::f64::consts::TAU * x).cos())
+        self.profile.y(x)
     }
     /// `y_s'(x)`.
     pub fn slope(&self, x: f64) -> f64 {
-        -self.amplitude * std::f64::consts::TAU * (std::f64::consts::TAU * x).sin()
+        self.profile.slope(x)
     }
     /// `y_s''(x)`.
     pub fn curvature(&self, x: f64) -> f64 {
-        let t = std::f64::consts::TAU;
-        -self.amplitude * t * t * (t * x).cos()
+        self.profile.curvature(x)
     }
     /// Arc length along the surface from `x0` to `x1` (signed), `∫ √(1 + y_s'²) dx`, by
     /// 8-point Gauss–Legendre quadrature: the integrand is analytic, so for the short
@@ -71,7 +84,7 @@ impl Indenter {
             0.222_381_034_453_374_5,
             0.101_228_536_290_376_3,
         ];
-        if self.amplitude == 0.0 {
+        if self.amplitude() == 0.0 {
             return x1 - x0;
         }
         let (mid, half) = (0.5 * (x0 + x1), 0.5 * (x1 - x0));

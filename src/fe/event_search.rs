@@ -53,7 +53,7 @@ const MIN_SPAN_OVER_GROWTH: f64 = 1e-3;
 /// Gap below which a free node counts as touching (units of λ, see
 /// [`OPEN_GAP_OVER_AMPLITUDE`]).
 fn open_gap_tolerance(model: &Model) -> f64 {
-    OPEN_GAP_OVER_AMPLITUDE * model.indenter.amplitude
+    OPEN_GAP_OVER_AMPLITUDE * model.indenter.amplitude()
 }
 
 /// Last active contact-face node (the peak node 0 if none).
@@ -107,7 +107,7 @@ pub(crate) fn activate_touching(model: &Model, st: &mut State, target: usize) {
 /// Gap tolerance of an event whose target starts at gap `g0`:
 /// `max(edge_gap_rtol · |g₀|, 10⁻¹⁵ Δ)` ([`EVENT_GAP_FLOOR_OVER_AMPLITUDE`]).
 pub(crate) fn event_gap_tolerance(model: &Model, opts: &SolveOptions, g0: f64) -> f64 {
-    (opts.edge_gap_rtol * g0.abs()).max(EVENT_GAP_FLOOR_OVER_AMPLITUDE * model.indenter.amplitude)
+    (opts.edge_gap_rtol * g0.abs()).max(EVENT_GAP_FLOOR_OVER_AMPLITUDE * model.indenter.amplitude())
 }
 
 /// Increment of `d` at which free node `k`, at gap `g0`, closes along the load tangent

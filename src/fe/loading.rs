@@ -53,7 +53,7 @@ impl LoadPath {
             cur: model.initial_state(),
             prev: None,
             a: 0.0,
-            last_increment: opts.first_step_over_amplitude * model.indenter.amplitude,
+            last_increment: opts.first_step_over_amplitude * model.indenter.amplitude(),
             event_ratio: 1.0,
             points: Vec::new(),
             grad: vec![0.0; 2 * model.num_nodes()],

@@ -95,6 +95,8 @@ pub use step_state::StepState;
 
 use serde::{Deserialize, Serialize};
 
+use crate::profile::{FinerHarmonics, Profile};
+
 /// Kinematic model; named `finite` and `linear` in specs and on the command line.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -139,8 +141,12 @@ impl std::str::FromStr for Kinematics {
 /// Physical problem.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LayerProblem {
-    /// Indenter aspect ratio `Δ/λ` (> 0).
+    /// Indenter aspect ratio `Δ/λ` (> 0): of the single sinusoid, or of a profile's big
+    /// wave (order 1).
     pub aspect_ratio: f64,
+    /// A profile's finer harmonics (none for a single sinusoid; [`crate::profile`]).
+    #[serde(default)]
+    pub finer_harmonics: FinerHarmonics,
     /// Layer thickness `h/λ` (> 0).
     pub thickness_over_lambda: f64,
     /// Bulk-to-shear modulus ratio `κ/G` (> 0).
@@ -149,6 +155,17 @@ pub struct LayerProblem {
     pub kinematics: Kinematics,
     /// Interface law.
     pub interface: Interface,
+}
+
+impl LayerProblem {
+    /// The indenter's profile: the big wave of [`LayerProblem::aspect_ratio`] and the finer
+    /// harmonics.
+    pub fn profile(&self) -> Profile {
+        Profile {
+            aspect_ratio: self.aspect_ratio,
+            finer: self.finer_harmonics,
+        }
+    }
 }
 
 /// Numerical options.
@@ -358,7 +375,7 @@ pub fn build_model(problem: &LayerProblem, opts: &SolveOptions) -> model::Model 
         mat,
         problem.kinematics,
         contact::Indenter {
-            amplitude: problem.aspect_ratio,
+            profile: problem.profile(),
         },
         problem.interface,
         model::Lateral::Symmetric,

@@ -89,7 +89,7 @@ pub fn press_and_shear(test: &ShearTest) -> Result<Vec<ShearPoint>, SolveError> 
         mesh,
         mat,
         Kinematics::Finite,
-        Indenter { amplitude: 0.0 },
+        Indenter::sinusoid(0.0),
         Interface::CoulombOrowan(test.friction),
         Lateral::Free,
     );

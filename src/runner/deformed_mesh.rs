@@ -114,7 +114,7 @@ fn mesh_panel(state: &DeformedState, ar: f64, last: &CurvePoint) -> Panel {
             Series::line(None, palette::GREY, 1, pts)
         })
         .collect();
-    let indenter = fe::contact::Indenter { amplitude: ar };
+    let indenter = fe::contact::Indenter::sinusoid(ar);
     let surface: Vec<(f64, f64)> = (0..=200)
         .map(|i| 0.5 * i as f64 / 200.0)
         .map(|x| (x, indenter.y(x)))

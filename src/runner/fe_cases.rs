@@ -198,6 +198,7 @@ impl FeCase {
     ) -> Self {
         let problem = LayerProblem {
             aspect_ratio,
+            finer_harmonics: crate::profile::FinerHarmonics::NONE,
             thickness_over_lambda: physics.thickness_over_lambda,
             kappa_over_g: physics.kappa_over_g,
             kinematics: physics.kinematics,

@@ -1,0 +1,334 @@
+//! Even, λ-periodic rigid surface profiles given as cosine harmonics (units of λ):
+//!
+//! ```text
+//! y_s(x) = −Σ_k Δ_k (1 − cos 2π n_k x),   AR_k = Δ_k n_k
+//! ```
+//!
+//! Each harmonic is named by its order `n_k` (it has `n_k` waves per λ) and its own aspect
+//! ratio `AR_k`: its amplitude over its own wavelength `λ/n_k`. The first harmonic is the big
+//! wave, order 1, with a positive aspect ratio; the others are finer (orders ≥ 2, strictly
+//! increasing). Every term is `≤ 0` and vanishes at `x = 0`, so the peak `x = 0` is the highest
+//! point and first contact happens there. A single sinusoid is the profile `1:AR`.
+
+use std::fmt;
+use std::str::FromStr;
+
+use serde::{Deserialize, Serialize};
+
+/// One cosine harmonic of a profile.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Harmonic {
+    /// Waves per wavelength λ (`n_k ≥ 1`).
+    pub order: u32,
+    /// Its own aspect ratio `AR_k = Δ_k n_k/λ` (`≥ 0`).
+    pub aspect_ratio: f64,
+}
+
+impl Harmonic {
+    /// Amplitude `Δ_k/λ = AR_k/n_k`.
+    pub fn amplitude(&self) -> f64 {
+        self.aspect_ratio / self.order as f64
+    }
+}
+
+/// Most harmonics a profile may have.
+pub const MAX_HARMONICS: usize = 8;
+
+/// The finer harmonics of a profile (orders ≥ 2, strictly increasing; at most
+/// [`MAX_HARMONICS`] − 1); empty for a single sinusoid. A fixed-capacity list, so that the
+/// problem description that holds it stays `Copy`; read and written as a list.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "Vec<Harmonic>", into = "Vec<Harmonic>")]
+pub struct FinerHarmonics {
+    len: usize,
+    items: [Option<Harmonic>; MAX_HARMONICS - 1],
+}
+
+impl FinerHarmonics {
+    /// No finer harmonic: a single sinusoid.
+    pub const NONE: FinerHarmonics = FinerHarmonics {
+        len: 0,
+        items: [None; MAX_HARMONICS - 1],
+    };
+
+    /// The finer harmonics, checked ([`ProfileError`]).
+    pub fn new(harmonics: &[Harmonic]) -> Result<Self, ProfileError> {
+        if harmonics.len() > MAX_HARMONICS - 1 {
+            return Err(ProfileError::TooMany {
+                count: harmonics.len() + 1,
+            });
+        }
+        let mut out = Self::NONE;
+        let mut last_order = 1;
+        for &h in harmonics {
+            if h.order <= last_order {
+                return Err(ProfileError::Order {
+                    order: h.order,
+                    after: last_order,
+                });
+            }
+            if !(h.aspect_ratio.is_finite() && h.aspect_ratio >= 0.0) {
+                return Err(ProfileError::AspectRatio {
+                    order: h.order,
+                    value: h.aspect_ratio,
+                    allowed: ">= 0",
+                });
+            }
+            last_order = h.order;
+            out.items[out.len] = Some(h);
+            out.len += 1;
+        }
+        Ok(out)
+    }
+
+    /// The harmonics, in order.
+    pub fn iter(&self) -> impl Iterator<Item = Harmonic> + '_ {
+        self.items[..self.len]
+            .iter()
+            .map(|h| h.expect("within len"))
+    }
+
+    /// Whether there is none.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+}
+
+impl TryFrom<Vec<Harmonic>> for FinerHarmonics {
+    type Error = ProfileError;
+    fn try_from(v: Vec<Harmonic>) -> Result<Self, Self::Error> {
+        Self::new(&v)
+    }
+}
+
+impl From<FinerHarmonics> for Vec<Harmonic> {
+    fn from(f: FinerHarmonics) -> Self {
+        f.iter().collect()
+    }
+}
+
+/// A profile the solver cannot take, naming the harmonic and the limit.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ProfileError {
+    /// No harmonic, or the first is not of order 1.
+    #[error("a profile starts with the harmonic of order 1 (the wavelength λ), `1:AR`; got {got}")]
+    FirstHarmonic {
+        /// What was given first, in words.
+        got: String,
+    },
+    /// Orders not strictly increasing.
+    #[error("harmonic orders must increase strictly: order {order} follows order {after}")]
+    Order {
+        /// The offending order.
+        order: u32,
+        /// The order before it.
+        after: u32,
+    },
+    /// An aspect ratio out of range.
+    #[error("harmonic {order}: aspect ratio {value} is out of range; allowed: {allowed}")]
+    AspectRatio {
+        /// Its order.
+        order: u32,
+        /// The value given.
+        value: f64,
+        /// The range, in words.
+        allowed: &'static str,
+    },
+    /// More harmonics than [`MAX_HARMONICS`].
+    #[error("a profile has at most {MAX_HARMONICS} harmonics; got {count}")]
+    TooMany {
+        /// How many were given.
+        count: usize,
+    },
+    /// Text that is not `order:aspect_ratio` pairs.
+    #[error("`{text}` is not a profile: comma-separated `order:aspect_ratio` pairs expected, e.g. `1:0.1,16:0.05`")]
+    Syntax {
+        /// The text given.
+        text: String,
+    },
+}
+
+/// An even, λ-periodic profile: the big wave (order 1) and its finer harmonics.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Profile {
+    /// Aspect ratio of the big wave (order 1), `> 0`.
+    pub aspect_ratio: f64,
+    /// The finer harmonics.
+    pub finer: FinerHarmonics,
+}
+
+impl Profile {
+    /// The single sinusoid `1:AR`.
+    pub fn sinusoid(aspect_ratio: f64) -> Self {
+        Self {
+            aspect_ratio,
+            finer: FinerHarmonics::NONE,
+        }
+    }
+
+    /// The profile of a list of harmonics, the first of order 1 ([`ProfileError`]).
+    pub fn new(harmonics: &[Harmonic]) -> Result<Self, ProfileError> {
+        let Some((first, finer)) = harmonics.split_first() else {
+            return Err(ProfileError::FirstHarmonic {
+                got: "no harmonic".into(),
+            });
+        };
+        if first.order != 1 {
+            return Err(ProfileError::FirstHarmonic {
+                got: format!("order {}", first.order),
+            });
+        }
+        if !(first.aspect_ratio.is_finite() && first.aspect_ratio > 0.0) {
+            return Err(ProfileError::AspectRatio {
+                order: 1,
+                value: first.aspect_ratio,
+                allowed: "> 0",
+            });
+        }
+        Ok(Self {
+            aspect_ratio: first.aspect_ratio,
+            finer: FinerHarmonics::new(finer)?,
+        })
+    }
+
+    /// Every harmonic, the big wave first.
+    pub fn harmonics(&self) -> impl Iterator<Item = Harmonic> + '_ {
+        std::iter::once(Harmonic {
+            order: 1,
+            aspect_ratio: self.aspect_ratio,
+        })
+        .chain(self.finer.iter())
+    }
+
+    /// Whether this is a single sinusoid (no finer harmonic, or only ones of zero amplitude
+    /// count as finer: this asks for none at all).
+    pub fn is_sinusoid(&self) -> bool {
+        self.finer.is_empty()
+    }
+
+    /// The highest order `max n_k`.
+    pub fn max_order(&self) -> u32 {
+        self.harmonics().map(|h| h.order).max().unwrap_or(1)
+    }
+
+    /// `Σ Δ_k/λ`: the scale of the profile's heights (`Δ` of a single sinusoid).
+    pub fn amplitude_sum(&self) -> f64 {
+        self.harmonics().map(|h| h.amplitude()).sum()
+    }
+
+    /// The largest slope any harmonic can reach, `Σ 2π AR_k` (a bound on `|y_s'|`).
+    pub fn slope_bound(&self) -> f64 {
+        self.harmonics()
+            .map(|h| std::f64::consts::TAU * h.aspect_ratio)
+            .sum()
+    }
+
+    /// `y_s(x)` (units of λ).
+    pub fn y(&self, x: f64) -> f64 {
+        self.harmonics()
+            .map(|h| -h.amplitude() * (1.0 - (std::f64::consts::TAU * h.order as f64 * x).cos()))
+            .sum()
+    }
+
+    /// `y_s'(x)`.
+    pub fn slope(&self, x: f64) -> f64 {
+        self.harmonics()
+            .map(|h| {
+                let k = std::f64::consts::TAU * h.order as f64;
+                -h.amplitude() * k * (k * x).sin()
+            })
+            .sum()
+    }
+
+    /// `y_s''(x)`.
+    pub fn curvature(&self, x: f64) -> f64 {
+        self.harmonics()
+            .map(|h| {
+                let k = std::f64::consts::TAU * h.order as f64;
+                -h.amplitude() * k * k * (k * x).cos()
+            })
+            .sum()
+    }
+}
+
+impl FromStr for Profile {
+    type Err = ProfileError;
+    /// `order:aspect_ratio` pairs separated by commas, e.g. `1:0.1,16:0.05`.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let syntax = || ProfileError::Syntax { text: s.into() };
+        let harmonics = s
+            .split(',')
+            .map(|pair| {
+                let (n, ar) = pair.trim().split_once(':').ok_or_else(syntax)?;
+                Ok(Harmonic {
+                    order: n.trim().parse().map_err(|_| syntax())?,
+                    aspect_ratio: ar.trim().parse().map_err(|_| syntax())?,
+                })
+            })
+            .collect::<Result<Vec<_>, ProfileError>>()?;
+        Self::new(&harmonics)
+    }
+}
+
+impl fmt::Display for Profile {
+    /// The form [`FromStr`] reads.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let parts: Vec<String> = self
+            .harmonics()
+            .map(|h| format!("{}:{}", h.order, h.aspect_ratio))
+            .collect();
+        f.write_str(&parts.join(","))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_and_prints_a_two_scale_profile() {
+        let p: Profile = "1:0.1, 16:0.05".parse().unwrap();
+        assert_eq!(p.to_string(), "1:0.1,16:0.05");
+        assert_eq!(p.max_order(), 16);
+        assert!((p.amplitude_sum() - (0.1 + 0.05 / 16.0)).abs() < 1e-15);
+        assert!(!p.is_sinusoid());
+    }
+
+    #[test]
+    fn refuses_bad_profiles_naming_the_harmonic() {
+        let err = |s: &str| s.parse::<Profile>().unwrap_err().to_string();
+        assert!(err("2:0.1").contains("order 1"), "{}", err("2:0.1"));
+        assert!(err("1:0.1,16:0.05,8:0.1").contains("order 8 follows order 16"));
+        assert!(err("1:0.1,16:-0.05").contains("harmonic 16"));
+        assert!(err("1:0").contains("harmonic 1"));
+        assert!(err("1:0.1;2:0.1").contains("order:aspect_ratio"));
+        let many: Vec<String> = (1..=9).map(|n| format!("{n}:0.01")).collect();
+        assert!(err(&many.join(",")).contains("at most 8"));
+    }
+
+    /// A single sinusoid's height, slope and curvature are the closed forms, bit for bit.
+    #[test]
+    fn a_sinusoid_is_the_closed_form() {
+        let p = Profile::sinusoid(0.3);
+        let t = std::f64::consts::TAU;
+        for x in [0.0, 0.013, 0.2, 0.37, 0.5] {
+            assert_eq!(p.y(x), -0.3 * (1.0 - (t * x).cos()));
+            assert_eq!(p.slope(x), -0.3 * t * (t * x).sin());
+            assert_eq!(p.curvature(x), -0.3 * t * t * (t * x).cos());
+        }
+    }
+
+    /// Slope and curvature are the derivatives of the height (central differences).
+    #[test]
+    fn derivatives_match_differences() {
+        let p: Profile = "1:0.1,8:0.1".parse().unwrap();
+        let h = 1e-6;
+        for x in [0.01, 0.1, 0.23, 0.41] {
+            let dy = (p.y(x + h) - p.y(x - h)) / (2.0 * h);
+            let d2y = (p.slope(x + h) - p.slope(x - h)) / (2.0 * h);
+            assert!((dy - p.slope(x)).abs() < 1e-8, "x = {x}");
+            assert!((d2y - p.curvature(x)).abs() < 1e-6, "x = {x}");
+        }
+        assert!(p.y(0.0) == 0.0 && (0..=50).all(|i| p.y(i as f64 / 100.0) <= 0.0));
+    }
+}
