@@ -118,6 +118,8 @@ fn fig5_fe_band_comes_from_the_fe_curves() {
                 slab_displacement_over_lambda: 0.0,
                 newton_iterations: 0,
                 active_nodes: 0,
+                contact_fraction: 2.0 * num(&r[a]).unwrap(),
+                patches: 1,
             })
             .collect()
     };

@@ -35,6 +35,12 @@ pub fn mesh(s: &str) -> Result<MeshLevel, String> {
     wavy::runner::input::mesh(s).map_err(|e| e.to_string())
 }
 
+/// An even periodic profile, `order:aspect_ratio` pairs (`wavy::profile`).
+pub fn profile(s: &str) -> Result<wavy::profile::Profile, String> {
+    s.parse()
+        .map_err(|e: wavy::profile::ProfileError| e.to_string())
+}
+
 /// Flags that take a list of numbers.
 const NUMBER_LISTS: [&str; 2] = ["--a-over-lambda", "--p-over-estar"];
 

@@ -7,6 +7,7 @@ use std::ops::ControlFlow;
 use std::process::ExitCode;
 use wavy::defaults;
 use wavy::fe::{Kinematics, MeshLevel};
+use wavy::profile::Profile;
 use wavy::runner::request_error::RequestError;
 use wavy::runner::solve_outcome::SolveRow;
 use wavy::runner::solve_request::{PreparedSolve, SolveRequest};
@@ -14,9 +15,20 @@ use wavy::runner::solve_request::{PreparedSolve, SolveRequest};
 /// Arguments of `wavy solve`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct SolveArgs {
-    /// Aspect ratio Δ/λ (> 0).
-    #[arg(long, allow_hyphen_values = true)]
-    pub ar: f64,
+    /// Aspect ratio Δ/λ (> 0) of a single sinusoid: the shorthand for `--profile 1:AR`.
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        required_unless_present = "profile",
+        conflicts_with = "profile"
+    )]
+    pub ar: Option<f64>,
+    /// Instead of --ar: an even periodic profile as cosine harmonics `order:aspect_ratio`,
+    /// comma-separated, the first of order 1 (the wavelength λ), e.g. `1:0.1,16:0.05`; each
+    /// aspect ratio is the harmonic's amplitude over its own wavelength λ/order
+    /// (docs/replication.md R13).
+    #[arg(long, value_parser = super::input::profile)]
+    pub profile: Option<Profile>,
     /// Interfacial shear strength τ_max in MPa (≥ 0; 0 = frictionless).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub tau_max_mpa: f64,
@@ -58,6 +70,14 @@ pub struct SolveArgs {
     /// the way.
     #[arg(long, allow_hyphen_values = true)]
     pub until_p_over_estar: Option<f64>,
+    /// Instead of a/λ: load until the contact fraction (total contact length over λ; 2a/λ for
+    /// one patch) reaches this (in (0, 1)): a profile's counterpart of --until-a-over-lambda.
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        conflicts_with = "until_p_over_estar"
+    )]
+    pub until_contact_fraction: Option<f64>,
     /// Then unload back to zero load, the friction history carried through: the slab
     /// retracts through the loading steps' loads in reverse; a last column `branch`
     /// (loading, unloading) says which branch each row is on.
@@ -75,8 +95,12 @@ pub struct SolveArgs {
 impl SolveArgs {
     /// The library's request: the same fields (`--ar` is `ar`, …).
     pub fn request(&self) -> SolveRequest {
+        let profile = self.profile.unwrap_or_else(|| {
+            Profile::sinusoid(self.ar.expect("clap requires --ar or --profile"))
+        });
         SolveRequest {
-            ar: self.ar,
+            ar: profile.aspect_ratio,
+            finer_harmonics: profile.finer,
             tau_max_mpa: self.tau_max_mpa,
             mu: self.mu,
             estar_mpa: self.estar_mpa,
@@ -88,6 +112,7 @@ impl SolveArgs {
             error_estimate: self.error_estimate,
             until_a_over_lambda: self.until_a_over_lambda,
             until_p_over_estar: self.until_p_over_estar,
+            until_contact_fraction: self.until_contact_fraction,
             unload: self.unload,
         }
     }

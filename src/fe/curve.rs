@@ -22,23 +22,31 @@ pub struct CurvePoint {
     pub newton_iterations: usize,
     /// Contact-face nodes in contact.
     pub active_nodes: usize,
+    /// Total contact length over λ ([`super::patches`]): `2a/λ` for the single patch of a
+    /// sinusoid.
+    pub contact_fraction: f64,
+    /// Contact patches in the half wavelength `[0, ½]` (a patch that reaches a symmetry line
+    /// continues in its mirror image).
+    pub patches: usize,
 }
 
 impl CurvePoint {
     /// Header of the CSV form of curve points ([`CurvePoint::csv_row`]).
-    pub const CSV_HEADER: &'static str = "a_over_lambda,p_over_estar,p_over_estar_reaction,slab_displacement_over_lambda,newton_iterations,active_nodes";
+    pub const CSV_HEADER: &'static str = "a_over_lambda,p_over_estar,p_over_estar_reaction,slab_displacement_over_lambda,newton_iterations,active_nodes,contact_fraction,patches";
 
     /// One CSV row, numbers in shortest round-trip form (exact: [`FromStr`] reads it back
     /// bit for bit).
     pub fn csv_row(&self) -> String {
         format!(
-            "{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{}",
             self.a_over_lambda,
             self.p_over_estar,
             self.p_over_estar_reaction,
             self.slab_displacement_over_lambda,
             self.newton_iterations,
-            self.active_nodes
+            self.active_nodes,
+            self.contact_fraction,
+            self.patches
         )
     }
 }
@@ -51,7 +59,7 @@ pub struct CurvePointParseError {
     pub row: String,
 }
 
-const CSV_FIELDS: usize = 6;
+const CSV_FIELDS: usize = 8;
 
 impl FromStr for CurvePoint {
     type Err = CurvePointParseError;
@@ -69,6 +77,8 @@ impl FromStr for CurvePoint {
             slab_displacement_over_lambda: f[3].parse().map_err(|_| bad())?,
             newton_iterations: f[4].parse().map_err(|_| bad())?,
             active_nodes: f[5].parse().map_err(|_| bad())?,
+            contact_fraction: f[6].parse().map_err(|_| bad())?,
+            patches: f[7].parse().map_err(|_| bad())?,
         })
     }
 }
@@ -200,6 +210,8 @@ pub(crate) fn awkward_point() -> CurvePoint {
         slab_displacement_over_lambda: -1e-17,
         newton_iterations: 4,
         active_nodes: 17,
+        contact_fraction: 0.6 - 0.0000001,
+        patches: 3,
     }
 }
 
@@ -231,6 +243,6 @@ mod tests {
         assert_eq!(p.csv_row().parse::<CurvePoint>(), Ok(p));
         assert_eq!(CurvePoint::CSV_HEADER.split(',').count(), CSV_FIELDS);
         assert!("1,2,3".parse::<CurvePoint>().is_err());
-        assert!("1,2,3,4,x,6".parse::<CurvePoint>().is_err());
+        assert!("1,2,3,4,x,6,7,8".parse::<CurvePoint>().is_err());
     }
 }

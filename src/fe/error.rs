@@ -77,6 +77,36 @@ pub enum SolveError {
         /// The requested `until_a_over_lambda`.
         target: f64,
     },
+    /// Every contact-face node is in contact before the contact fraction reached its target.
+    #[error("the contact is complete at a contact fraction of {contact_fraction:.4}, short of the target {target:.4}: every contact-face node touched; lower the target")]
+    ContactFractionBeyondMesh {
+        /// Contact fraction reached.
+        contact_fraction: f64,
+        /// The requested `until_contact_fraction`.
+        target: f64,
+    },
+    /// A profile harmonic that the mesh resolves with too few elements.
+    #[error("profile harmonic {order} (wavelength λ/{order}) spans {elements_per_wavelength:.1} face elements where the mesh is coarsest; at least {min} are needed: refine the mesh (more elements along the face) or drop the harmonic")]
+    ProfileUnresolved {
+        /// The harmonic's order.
+        order: u32,
+        /// Face elements per its wavelength at the largest face spacing.
+        elements_per_wavelength: f64,
+        /// The least allowed.
+        min: f64,
+    },
+    /// A profile whose slopes the solver cannot follow.
+    #[error("profile slopes up to Σ 2π AR_k = {slope_bound:.3} exceed {limit:.3} (the steepest sinusoid the solver is verified on); harmonic {steepest_order} contributes most ({steepest_slope:.3}): lower its aspect ratio")]
+    ProfileTooSteep {
+        /// `Σ 2π AR_k`.
+        slope_bound: f64,
+        /// The largest allowed.
+        limit: f64,
+        /// The harmonic contributing most.
+        steepest_order: u32,
+        /// Its `2π AR_k`.
+        steepest_slope: f64,
+    },
     /// An unloading step failed even after the maximum number of step cuts.
     #[error("unloading stopped at slab displacement d/λ = {slab_displacement_over_lambda:.6e} (next target {target:.6e}) after {cuts} step cuts: {reason}")]
     UnloadingStalled {

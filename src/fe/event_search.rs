@@ -52,7 +52,7 @@ const MIN_SPAN_OVER_GROWTH: f64 = 1e-3;
 
 /// Gap below which a free node counts as touching (units of λ, see
 /// [`OPEN_GAP_OVER_AMPLITUDE`]).
-fn open_gap_tolerance(model: &Model) -> f64 {
+pub(crate) fn open_gap_tolerance(model: &Model) -> f64 {
     OPEN_GAP_OVER_AMPLITUDE * model.indenter.amplitude()
 }
 

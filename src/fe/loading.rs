@@ -7,14 +7,17 @@
 //! event's ratio of actual to extrapolated increment. Nodes left touching with a vanishing
 //! force at the last event enter the next step active.
 
+use serde::{Deserialize, Serialize};
+
 use super::active_set::equilibrate;
 use super::assembly::Assembly;
 use super::error::{CurveFailure, SolveError};
 use super::event_search::{
     activate_touching, closing_increment, event_gap_tolerance, next_target, EventSearch,
 };
-use super::measure::{deformed_state, measure};
+use super::measure::{deformed_state, measure, EdgeAt};
 use super::model::{Model, State};
+use super::node_events::{activate_touching_anywhere, earliest_touchdown, passed_touchdowns};
 use super::predictor::tangent_at;
 use super::pressure_target::{land_on_pressure, Overshoot, PRESSURE_TARGET_RTOL};
 use super::step_state::Converged;
@@ -27,6 +30,25 @@ const EVENT_RATIO_MIN: f64 = 0.5;
 
 /// Upper bound of the event ratio ([`EVENT_RATIO_MIN`]).
 const EVENT_RATIO_MAX: f64 = 4.0;
+
+/// How the load steps from one contact event to the next.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Stepping {
+    /// Edge by edge for a single sinusoid (its contact is one patch growing from the peak:
+    /// the next event is the first free node beyond the edge), node events for a profile.
+    #[default]
+    Auto,
+    /// Node events ([`super::node_events`]): the next event is whichever free node touches
+    /// first, wherever it lies; a node that the step found touching before the target
+    /// becomes the target. Any profile; a single sinusoid gives the edge-by-edge curve.
+    NodeEvents,
+}
+
+/// Most times one step's target may be replaced by a node that touched before it
+/// ([`passed_touchdowns`]). Each replacement moves the event to a strictly smaller slab
+/// displacement, so the chain is short; a safeguard.
+const MAX_RETARGETS: usize = 8;
 
 /// What the load stepping carries from one edge event to the next.
 pub(crate) struct LoadPath {
@@ -139,7 +161,18 @@ pub(crate) fn loading_branch(
         (Some(target), Some(p)) => p.p_over_estar >= target * (1.0 - PRESSURE_TARGET_RTOL),
         _ => false,
     };
-    while path.a < opts.until_a_over_lambda && !pressure_reached(&path) {
+    let fraction_reached = |path: &LoadPath| match (opts.until_contact_fraction, path.points.last())
+    {
+        (Some(target), Some(p)) => p.contact_fraction >= target,
+        _ => false,
+    };
+    // with a contact-fraction target the contact width is no stop
+    let width_reached = |path: &LoadPath| {
+        opts.until_contact_fraction.is_none() && path.a >= opts.until_a_over_lambda
+    };
+    let node_events =
+        opts.stepping == Stepping::NodeEvents || !model.indenter.profile.is_sinusoid();
+    while !width_reached(&path) && !pressure_reached(&path) && !fraction_reached(&path) {
         if step > opts.max_steps {
             let error = SolveError::TooManySteps {
                 steps: opts.max_steps,
@@ -147,33 +180,55 @@ pub(crate) fn loading_branch(
             };
             return Err(path.fail(error));
         }
-        // the next edge node; nodes skipped because they touch enter the step active
-        let Some(k) = next_target(model, &path.cur, path.a, opts.da_target) else {
-            break; // full contact
+        // the next event's node: the first free node beyond the edge (edge by edge; nodes
+        // skipped because they touch enter the step active), or the free node that closes
+        // first along the load tangent (node events; every touching free node enters active)
+        let (mut k, tangent) = if node_events {
+            activate_touching_anywhere(model, &mut path.cur);
+            let tangent = tangent_at(model, asm, opts, &path.cur);
+            match earliest_touchdown(model, &path.cur, tangent.as_deref()) {
+                Some(k) => (k, tangent),
+                None => break, // full contact
+            }
+        } else {
+            let Some(k) = next_target(model, &path.cur, path.a, opts.da_target) else {
+                break; // full contact
+            };
+            activate_touching(model, &mut path.cur, k);
+            (k, tangent_at(model, asm, opts, &path.cur))
         };
-        activate_touching(model, &mut path.cur, k);
-        // predict: the slab displacement at which node k closes along the load tangent, scaled by
-        // the previous event's ratio of actual to extrapolated increment
-        let gap0 = model.gaps(&path.cur)[k];
-        let tangent = tangent_at(model, asm, opts, &path.cur);
-        let extrapolated = tangent
-            .as_deref()
-            .and_then(|z| closing_increment(model, &path.cur, k, gap0, z));
-        let search = EventSearch {
-            opts,
-            from: &path.cur,
-            before: path.prev.as_ref(),
-            node: k,
-            gap0,
-            gap_tol: event_gap_tolerance(model, opts, gap0),
-            tangent,
-            first_increment: extrapolated.map_or(path.last_increment, |e| e * path.event_ratio),
-            last_increment: path.last_increment,
-        };
-        // the event: node k touches with zero force
-        let (mut st, mut iters) = match search.find(model, asm, step) {
-            Ok(found) => found,
-            Err(error) => return Err(path.fail(error)),
+        let mut retargets = 0;
+        let (mut st, mut iters, extrapolated) = loop {
+            // predict: the slab displacement at which node k closes along the load tangent,
+            // scaled by the previous event's ratio of actual to extrapolated increment
+            let gap0 = model.gaps(&path.cur)[k];
+            let extrapolated = tangent
+                .as_deref()
+                .and_then(|z| closing_increment(model, &path.cur, k, gap0, z));
+            let search = EventSearch {
+                opts,
+                from: &path.cur,
+                before: path.prev.as_ref(),
+                node: k,
+                gap0,
+                gap_tol: event_gap_tolerance(model, opts, gap0),
+                tangent: tangent.clone(),
+                first_increment: extrapolated.map_or(path.last_increment, |e| e * path.event_ratio),
+                last_increment: path.last_increment,
+            };
+            // the event: node k touches with zero force
+            let (st, iters) = match search.find(model, asm, step) {
+                Ok(found) => found,
+                Err(error) => return Err(path.fail(error)),
+            };
+            // a node that touched on the way came first: it is the event
+            match passed_touchdowns(model, &path.cur, &st, tangent.as_deref()) {
+                Some(j) if node_events && retargets < MAX_RETARGETS => {
+                    retargets += 1;
+                    k = j;
+                }
+                _ => break (st, iters, extrapolated),
+            }
         };
         // node k enters contact; equilibrate, commit the slip and measure
         model.activate(&mut st, k);
@@ -183,7 +238,12 @@ pub(crate) fn loading_branch(
             Err(f) => return Err(path.fail(f.into_error(step, st.d))),
         }
         model.commit_slip(&mut st);
-        let (mut point, grad) = measure(model, asm, &st, estar, k, opts.edge_rule);
+        let edge = if node_events {
+            EdgeAt::OutermostPatch(Some(k))
+        } else {
+            EdgeAt::Node(k)
+        };
+        let (mut point, grad) = measure(model, asm, &st, estar, edge, opts);
         point.newton_iterations = iters;
         let overshot = opts.until_p_over_estar.filter(|&t| point.p_over_estar > t);
         // the event that overshoots the pressure target is replaced by the state on it,
@@ -228,6 +288,16 @@ pub(crate) fn loading_branch(
             };
             return Err(path.fail(error));
         }
+    }
+    if let Some(target) = opts.until_contact_fraction {
+        if !fraction_reached(&path) && !pressure_reached(&path) {
+            let error = SolveError::ContactFractionBeyondMesh {
+                contact_fraction: path.points.last().map_or(0.0, |p| p.contact_fraction),
+                target,
+            };
+            return Err(path.fail(error));
+        }
+        return Ok(path);
     }
     if path.a < opts.until_a_over_lambda && !pressure_reached(&path) {
         let error = SolveError::TargetBeyondMesh {

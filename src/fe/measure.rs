@@ -1,11 +1,13 @@
-//! What a converged state is worth on the curve: its point (contact half-width, mean
-//! pressure from the contact forces and from the slab reaction, slab displacement) and its
+//! What a converged state is worth on the curve: its point (contact half-width, contact
+//! fraction and patches, mean pressure from the contact forces and from the slab reaction, slab
+//! displacement) and its
 //! deformed state with the contact tractions.
 
 use super::assembly::Assembly;
 use super::edge_rule::{edge_position, loaded_edge_node};
 use super::model::{Model, State};
-use super::{CurvePoint, DeformedState, EdgeRule, SolveOptions};
+use super::patches::{contact_fraction, contact_patches};
+use super::{CurvePoint, DeformedState, SolveOptions};
 
 /// The modelled width, half a wavelength (units of λ): the mean pressure is a force over it.
 const HALF_WAVELENGTH: f64 = 0.5;
@@ -16,37 +18,60 @@ pub(crate) fn mean_pressure_over_estar(model: &Model, st: &State, grad: &[f64], 
     model.multipliers(st, grad).iter().sum::<f64>() / HALF_WAVELENGTH / estar
 }
 
-/// The point of a converged state whose edge node is `edge` (the node an edge event brought
-/// onto the indenter; the edge lies in the element before it, [`edge_position`]), and its
+/// Where a measured point's contact half-width `a/λ` lies.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum EdgeAt {
+    /// In the element before this contact-face node (the node an edge event brought onto the
+    /// indenter, touching with zero force, or the one after the last loaded node;
+    /// [`edge_position`]).
+    Node(usize),
+    /// At the outer edge of the outermost contact patch ([`contact_patches`]): the extent of
+    /// the contact of a profile, whose patches need not reach from the peak. With the node of
+    /// the event that brought it onto the indenter (touching with zero force), if any.
+    OutermostPatch(Option<usize>),
+}
+
+/// The point of a converged state with its contact half-width where `edge` says, and its
 /// internal forces `∂Π/∂x`.
 pub(crate) fn measure(
     model: &Model,
     asm: &mut Assembly,
     st: &State,
     estar: f64,
-    edge: usize,
-    rule: EdgeRule,
+    edge: EdgeAt,
+    opts: &SolveOptions,
 ) -> (CurvePoint, Vec<f64>) {
     let f = asm
         .assemble(model, st, false)
         .expect("converged state is not inverted");
     let p_tr = mean_pressure_over_estar(model, st, &f.grad, estar);
     let p_re = model.slab_reaction(&f.grad) / HALF_WAVELENGTH / estar;
+    let event = match edge {
+        EdgeAt::Node(k) => Some(k),
+        EdgeAt::OutermostPatch(event) => event,
+    };
+    let patches = contact_patches(model, st, &f.grad, opts, event);
+    let a_over_lambda = match edge {
+        EdgeAt::Node(k) => edge_position(model, st, k, opts.edge_rule),
+        EdgeAt::OutermostPatch(_) => patches.last().map_or(0.0, |p| p[1]),
+    };
     (
         CurvePoint {
-            a_over_lambda: edge_position(model, st, edge, rule),
+            a_over_lambda,
             p_over_estar: p_tr,
             p_over_estar_reaction: p_re,
             slab_displacement_over_lambda: st.d,
             newton_iterations: 0,
             active_nodes: st.active.iter().filter(|&&b| b).count(),
+            contact_fraction: contact_fraction(&patches),
+            patches: patches.len(),
         },
         f.grad,
     )
 }
 
 /// [`measure`] for a converged state that is not an edge event: the edge in the last loaded
-/// element ([`loaded_edge_node`]).
+/// element ([`loaded_edge_node`]) for a sinusoid, of the outermost patch for a profile.
 pub(crate) fn measure_between_events(
     model: &Model,
     asm: &mut Assembly,
@@ -57,8 +82,12 @@ pub(crate) fn measure_between_events(
     let f = asm
         .assemble(model, st, false)
         .expect("converged state is not inverted");
-    let edge = loaded_edge_node(model, st, &f.grad, opts.multiplier_rtol);
-    measure(model, asm, st, estar, edge, opts.edge_rule)
+    let edge = if model.indenter.profile.is_sinusoid() {
+        EdgeAt::Node(loaded_edge_node(model, st, &f.grad, opts.multiplier_rtol))
+    } else {
+        EdgeAt::OutermostPatch(None)
+    };
+    measure(model, asm, st, estar, edge, opts)
 }
 
 /// The deformed state and its contact tractions: normal and tangential nodal contact

@@ -25,6 +25,7 @@
 //!   width or (with [`pressure_target`]) to a mean pressure; [`unloading`]: back to zero
 //!   load;
 //! * [`event_search`]: which node touches next and at which slab displacement;
+//!   [`node_events`]: the same for a contact in several patches (profiles);
 //!   [`step_control`]: its regula falsi and the cutting of failed steps;
 //! * [`predictor`]: the load tangent and the predicted state of a step;
 //! * [`active_set`]: Newton passes alternating with contact-set updates;
@@ -33,8 +34,8 @@
 //!   each friction node's piece of the law;
 //! * [`linsys`]: the sparse direct solves through faer (the fallback chain of the
 //!   factorisations is described there);
-//! * [`edge_rule`], [`measure`]: where the contact edge lies, and the point and deformed
-//!   state of a converged state;
+//! * [`edge_rule`], [`patches`], [`measure`]: where the contact edges lie, the contact
+//!   patches, and the point and deformed state of a converged state;
 //! * [`curve`]: the computed curve (points, unloading points, last deformed state), the CSV
 //!   row of a point, and the work of a cycle;
 //! * [`step_state`]: the deformed state of every converged point, built only for a caller
@@ -71,6 +72,8 @@ pub mod measure;
 pub mod mesh;
 pub mod model;
 pub mod newton;
+pub mod node_events;
+pub mod patches;
 pub mod predictor;
 pub mod pressure_target;
 pub mod shear_test;
@@ -89,6 +92,7 @@ pub use curve::{
 pub use edge_rule::{EdgeRule, DISCRETE_EDGE_FRACTION};
 pub use error::{CurveFailure, SolveError};
 pub use friction::{CoulombOrowan, Interface};
+pub use loading::Stepping;
 pub use material::estar_over_g;
 pub use mesh::{Grading, MeshLevel, MeshLevelParseError};
 pub use step_state::StepState;
@@ -178,6 +182,15 @@ pub struct SolveOptions {
     /// is then the largest contact half-width allowed on the way (a curve that reaches it
     /// first is incomplete).
     pub until_p_over_estar: Option<f64>,
+    /// Instead: load until the contact fraction (total contact length over λ,
+    /// [`patches`]) reaches this (in `(0, 1)`): the last point is the first node event at or
+    /// beyond it; `until_a_over_lambda` is then not a stop. A profile's counterpart of
+    /// `until_a_over_lambda`.
+    #[serde(default)]
+    pub until_contact_fraction: Option<f64>,
+    /// How the load steps from one contact event to the next ([`Stepping`]).
+    #[serde(default)]
+    pub stepping: Stepping,
     /// Mesh resolution.
     pub mesh: MeshLevel,
     /// Mesh grading.
@@ -242,6 +255,8 @@ impl Default for SolveOptions {
         Self {
             until_a_over_lambda: 0.45,
             until_p_over_estar: None,
+            until_contact_fraction: None,
+            stepping: Stepping::Auto,
             mesh: MeshLevel::Default,
             grading: Grading::default(),
             edge_rule: EdgeRule::default(),
@@ -332,6 +347,15 @@ pub fn validate(problem: &LayerProblem, opts: &SolveOptions) -> Result<(), Solve
             "> 0",
         )?;
     }
+    if let Some(c) = opts.until_contact_fraction {
+        check_range("until_contact_fraction", c, c > 0.0 && c < 1.0, "(0, 1)")?;
+        check_range(
+            "until_contact_fraction",
+            c,
+            opts.until_p_over_estar.is_none(),
+            "unset when until_p_over_estar is set",
+        )?;
+    }
     if let Some(p) = opts.until_p_over_estar {
         check_range("until_p_over_estar", p, p > 0.0, "> 0")?;
     }
@@ -359,6 +383,53 @@ pub fn validate(problem: &LayerProblem, opts: &SolveOptions) -> Result<(), Solve
         opts.grading.first_layer_over_dx > 0.0,
         "> 0",
     )?;
+    validate_profile(&problem.profile(), nx, opts.grading)
+}
+
+/// Least face elements per wavelength of a profile's finer harmonic, where the face mesh is
+/// coarsest: a cosine sampled at 8 points per period is represented by the piecewise-linear
+/// face to within `1 − cos(π/8) ≈ 8 %` of its amplitude at a crest, and the contact patches of a
+/// crest then span several elements before they merge.
+pub const MIN_ELEMENTS_PER_HARMONIC_WAVELENGTH: f64 = 8.0;
+
+/// Largest slope bound `Σ 2π AR_k` of a profile with finer harmonics: that of the steepest
+/// sinusoid the solver is verified on, AR = 0.3 (the paper's range, docs/verification.md).
+pub const PROFILE_SLOPE_LIMIT: f64 = std::f64::consts::TAU * 0.3;
+
+/// A profile with finer harmonics must be resolved by the face mesh
+/// ([`MIN_ELEMENTS_PER_HARMONIC_WAVELENGTH`] where it is coarsest; a harmonic of zero amplitude
+/// needs none) and not steeper than [`PROFILE_SLOPE_LIMIT`]. A single sinusoid is not checked
+/// here (its limits are the solver's own errors).
+fn validate_profile(profile: &Profile, nx: usize, grading: Grading) -> Result<(), SolveError> {
+    if profile.is_sinusoid() {
+        return Ok(());
+    }
+    // the largest face spacing, at X = ½ (mesh::Mesh::graded): ratio/((ratio + 1) nx)
+    let ratio = grading.peak_ratio;
+    let largest_spacing = ratio / ((ratio + 1.0) * nx as f64);
+    for h in profile.finer.iter().filter(|h| h.aspect_ratio > 0.0) {
+        let elements = 1.0 / (h.order as f64 * largest_spacing);
+        if elements < MIN_ELEMENTS_PER_HARMONIC_WAVELENGTH {
+            return Err(SolveError::ProfileUnresolved {
+                order: h.order,
+                elements_per_wavelength: elements,
+                min: MIN_ELEMENTS_PER_HARMONIC_WAVELENGTH,
+            });
+        }
+    }
+    let slope_bound = profile.slope_bound();
+    if slope_bound > PROFILE_SLOPE_LIMIT {
+        let steepest = profile
+            .harmonics()
+            .max_by(|a, b| a.aspect_ratio.total_cmp(&b.aspect_ratio))
+            .expect("a profile has a harmonic");
+        return Err(SolveError::ProfileTooSteep {
+            slope_bound,
+            limit: PROFILE_SLOPE_LIMIT,
+            steepest_order: steepest.order,
+            steepest_slope: std::f64::consts::TAU * steepest.aspect_ratio,
+        });
+    }
     Ok(())
 }
 

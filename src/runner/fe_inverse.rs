@@ -73,6 +73,8 @@ mod tests {
             slab_displacement_over_lambda: 0.0,
             newton_iterations: 1,
             active_nodes: 1,
+            contact_fraction: 2.0 * a,
+            patches: 1,
         }
     }
 

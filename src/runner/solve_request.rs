@@ -13,6 +13,7 @@ use crate::defaults;
 use crate::fe::{
     self, CurvePoint, Kinematics, LayerProblem, LoadDirection, MeshLevel, SolveOptions, SolveWork,
 };
+use crate::profile::{FinerHarmonics, Profile};
 use crate::vtk::{write_series, VtkStep};
 use std::ops::ControlFlow;
 use std::panic::{self, AssertUnwindSafe};
@@ -21,8 +22,11 @@ use std::path::Path;
 /// What `wavy solve` is asked, field by field its flags (`ar` is `--ar`, …), in its units.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SolveRequest {
-    /// Aspect ratio Δ/λ (> 0).
+    /// Aspect ratio Δ/λ (> 0): of the sinusoid, or of the profile's big wave (order 1).
     pub ar: f64,
+    /// The profile's finer harmonics (`--profile 1:AR,n:AR_n,…` beyond its first pair; none
+    /// for a sinusoid).
+    pub finer_harmonics: FinerHarmonics,
     /// Interfacial shear strength τ_max in MPa (≥ 0; 0 = frictionless).
     pub tau_max_mpa: f64,
     /// Friction coefficient μ (≥ 0).
@@ -44,6 +48,8 @@ pub struct SolveRequest {
     pub until_a_over_lambda: f64,
     /// Instead: load until p̄/E* is this (> 0).
     pub until_p_over_estar: Option<f64>,
+    /// Instead: load until the contact fraction (contact length over λ) is this (in (0, 1)).
+    pub until_contact_fraction: Option<f64>,
     /// Then unload back to zero load.
     pub unload: bool,
 }
@@ -53,6 +59,7 @@ impl SolveRequest {
     pub fn new(ar: f64) -> Self {
         SolveRequest {
             ar,
+            finer_harmonics: FinerHarmonics::NONE,
             tau_max_mpa: 0.0,
             mu: defaults::friction_coefficient(),
             estar_mpa: defaults::fe_estar_mpa(),
@@ -64,7 +71,17 @@ impl SolveRequest {
             error_estimate: false,
             until_a_over_lambda: 0.45,
             until_p_over_estar: None,
+            until_contact_fraction: None,
             unload: false,
+        }
+    }
+
+    /// A request for the profile `profile` with every other field at the command line's
+    /// default.
+    pub fn with_profile(profile: &Profile) -> Self {
+        SolveRequest {
+            finer_harmonics: profile.finer,
+            ..Self::new(profile.aspect_ratio)
         }
     }
 
@@ -83,13 +100,41 @@ impl SolveRequest {
         if let Some(p) = self.until_p_over_estar {
             positive("--until-p-over-estar", p)?;
         }
-        if self.unload && self.error_estimate {
-            return Err(InputError::Refused {
-                flag: "--unload".into(),
-                value: "true".into(),
-                reason: "cannot be used with --error-estimate".into(),
+        if let Some(c) = self.until_contact_fraction {
+            if !(c.is_finite() && c > 0.0 && c < 1.0) {
+                return Err(out_of_range("--until-contact-fraction", c, "(0, 1)").into());
             }
-            .into());
+            if self.until_p_over_estar.is_some() {
+                return Err(refused(
+                    "--until-contact-fraction",
+                    c,
+                    "cannot be used with --until-p-over-estar",
+                ));
+            }
+        }
+        if !self.finer_harmonics.is_empty() {
+            // the measured tiers and their convergence orders are a sinusoid's
+            if let Some(t) = self.tolerance {
+                return Err(refused(
+                    "--tolerance",
+                    t,
+                    "is measured for a single sinusoid; with --profile choose --mesh",
+                ));
+            }
+            if self.error_estimate {
+                return Err(refused(
+                    "--error-estimate",
+                    true,
+                    "is measured for a single sinusoid; not with --profile",
+                ));
+            }
+        }
+        if self.unload && self.error_estimate {
+            return Err(refused(
+                "--unload",
+                true,
+                "cannot be used with --error-estimate",
+            ));
         }
         let physics = FePhysics {
             estar_mpa: self.estar_mpa,
@@ -110,17 +155,46 @@ impl SolveRequest {
         let options = SolveOptions {
             until_a_over_lambda: x,
             until_p_over_estar: self.until_p_over_estar,
+            until_contact_fraction: self.until_contact_fraction,
             mesh,
             ..SolveOptions::default()
         };
         let case = FeCase::new(&physics, self.ar, self.tau_max_mpa, options);
+        let problem = LayerProblem {
+            finer_harmonics: self.finer_harmonics,
+            ..case.problem
+        };
+        // a profile the mesh cannot resolve is refused here, before any solve
+        if let Err(e) = fe::validate(&problem, &case.options) {
+            if matches!(
+                e,
+                fe::SolveError::ProfileUnresolved { .. } | fe::SolveError::ProfileTooSteep { .. }
+            ) {
+                return Err(InputError::Refused {
+                    flag: "--profile".into(),
+                    value: problem.profile().to_string(),
+                    reason: e.to_string(),
+                }
+                .into());
+            }
+        }
         Ok(PreparedSolve {
             request: *self,
-            problem: case.problem,
+            problem,
             options: case.options,
             tolerance_choice,
         })
     }
+}
+
+/// The flag `flag` refused at `value` for `reason`.
+fn refused(flag: &str, value: impl std::fmt::Display, reason: &str) -> RequestError {
+    InputError::Refused {
+        flag: flag.into(),
+        value: value.to_string(),
+        reason: reason.into(),
+    }
+    .into()
 }
 
 /// The coarser curve of the error estimate, its element-count ratio and the convergence order.
