@@ -63,7 +63,7 @@ enum Command {
     /// Solve the finite-element contact problem: one CSV row per converged load step on stdout,
     /// from first contact until a/λ reaches the target (non-zero exit, after the converged rows,
     /// when the solver cannot go on).
-    Solve(cli::solve::SolveArgs),
+    Solve(Box<cli::solve::SolveArgs>),
     /// Compare the figures' tables with a git revision: review/<figure>.svg overlays (base grey
     /// and dashed) and review/summary.md, what moved per panel; exit 1 when something moved
     /// beyond a spec's [check] tolerances.

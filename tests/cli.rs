@@ -222,11 +222,14 @@ fn solve_with_unload_prints_both_branches() {
     assert!(o.status.success(), "{}", stderr(&o));
     let text = stdout(&o);
     let mut lines = text.lines();
-    assert!(lines.next().unwrap().ends_with(",active_nodes,branch"));
+    assert!(lines
+        .next()
+        .unwrap()
+        .ends_with(",active_nodes,contact_fraction,patches,branch"));
     let rows: Vec<(f64, &str)> = lines
         .map(|l| {
             let f: Vec<&str> = l.split(',').collect();
-            (f[1].parse().unwrap(), f[6])
+            (f[1].parse().unwrap(), f[8])
         })
         .collect();
     let turn = rows.iter().position(|r| r.1 == "unloading").unwrap();
@@ -437,4 +440,35 @@ fn hyphenated_numbers_and_unknown_names_are_refused_by_flag() {
         assert!(stderr(&o).contains(message), "{args:?}: {}", stderr(&o));
         assert!(stdout(&o).is_empty());
     }
+}
+
+/// `--profile`: a two-scale curve with its contact fraction and patches; a profile the mesh
+/// cannot resolve, or bad syntax, is invalid input (exit 2) naming the harmonic.
+#[test]
+fn solve_takes_a_profile() {
+    let o = wavy(
+        &[
+            "solve",
+            "--profile",
+            "1:0.1,8:0.1",
+            "--mesh",
+            "64",
+            "--until-contact-fraction",
+            "0.4",
+        ],
+        here(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    let last: Vec<&str> = text.lines().last().unwrap().split(',').collect();
+    assert!(last[6].parse::<f64>().unwrap() >= 0.4, "{last:?}");
+    let o = wavy(
+        &["solve", "--profile", "1:0.1,16:0.1", "--mesh", "32"],
+        here(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("harmonic 16"), "{}", stderr(&o));
+    let o = wavy(&["solve", "--profile", "1:0.1;8:0.1"], here());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("order:aspect_ratio"), "{}", stderr(&o));
 }

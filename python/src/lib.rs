@@ -115,6 +115,8 @@ fn outcome_dict<'py>(py: Python<'py>, o: &SolveOutcome) -> PyResult<Bound<'py, P
     };
     d.set_item("newton_iterations", count(|p| p.newton_iterations))?;
     d.set_item("active_nodes", count(|p| p.active_nodes))?;
+    d.set_item("contact_fraction", column(|p| p.contact_fraction))?;
+    d.set_item("patches", count(|p| p.patches))?;
     let branches: Vec<&str> = o.rows.iter().map(|r| r.branch.name()).collect();
     d.set_item("branch", branches)?;
     if o.extra == ExtraColumn::ErrorEstimate {
@@ -151,7 +153,7 @@ fn check_signals(raised: &mut Option<PyErr>) -> ControlFlow<()> {
 #[pyfunction]
 #[pyo3(signature = (*, ar, tau_max_mpa, mu, estar_mpa, kappa_over_g, thickness_over_lambda,
     kinematics, mesh, tolerance, error_estimate, until_a_over_lambda, until_p_over_estar, unload,
-    vtk))]
+    vtk, profile, until_contact_fraction))]
 #[allow(clippy::too_many_arguments)]
 fn solve<'py>(
     py: Python<'py>,
@@ -169,7 +171,24 @@ fn solve<'py>(
     until_p_over_estar: Option<f64>,
     unload: bool,
     vtk: Option<PathBuf>,
+    profile: Option<&str>,
+    until_contact_fraction: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    // `profile` (the command line's --profile) instead of `ar` (its shorthand --ar)
+    let (ar, finer_harmonics) = match profile {
+        Some(text) => {
+            let p: wavy::profile::Profile =
+                text.parse().map_err(|e: wavy::profile::ProfileError| {
+                    input_err(InputError::Refused {
+                        flag: "--profile".into(),
+                        value: text.into(),
+                        reason: e.to_string(),
+                    })
+                })?;
+            (p.aspect_ratio, p.finer)
+        }
+        None => (ar, wavy::profile::FinerHarmonics::NONE),
+    };
     if let (Some(m), Some(_)) = (mesh, tolerance) {
         return Err(input_err(InputError::Refused {
             flag: "--mesh".into(),
@@ -196,7 +215,9 @@ fn solve<'py>(
         error_estimate,
         until_a_over_lambda,
         until_p_over_estar,
+        until_contact_fraction,
         unload,
+        finer_harmonics,
         ..SolveRequest::new(ar)
     };
     let mut raised: Option<PyErr> = None;

@@ -12,7 +12,8 @@ import wavy
 from conftest import cli, cli_error, cli_rows
 
 NUMERIC = ["a_over_lambda", "p_over_estar", "p_over_estar_reaction",
-           "slab_displacement_over_lambda", "newton_iterations", "active_nodes"]
+           "slab_displacement_over_lambda", "newton_iterations", "active_nodes",
+           "contact_fraction", "patches"]
 
 
 def assert_same_rows(result, rows, extra=()):
@@ -177,3 +178,18 @@ def test_vtk_is_not_written_for_a_curve_that_stops(tmp_path):
     with pytest.raises(wavy.SolveError):
         wavy.solve(ar=0.3, mesh=8, until_a_over_lambda=0.45, vtk=tmp_path / "out")
     assert not (tmp_path / "out").exists()
+
+
+def test_a_two_scale_profile_matches_the_cli():
+    args = ("--profile", "1:0.1,8:0.1", "--mesh", 64, "--until-contact-fraction", 0.5)
+    rows = cli_rows("solve", *args)
+    r = wavy.solve(profile="1:0.1,8:0.1", mesh=64, until_contact_fraction=0.5)
+    assert_same_rows(r, rows)
+    assert r.contact_fraction[-1] >= 0.5 and max(r.patches) >= 2
+
+
+def test_a_profile_the_mesh_cannot_resolve_is_a_value_error():
+    with pytest.raises(ValueError, match="harmonic 16"):
+        wavy.solve(profile="1:0.1,16:0.1", mesh=32)
+    with pytest.raises(ValueError, match="exactly one of ar"):
+        wavy.solve(ar=0.1, profile="1:0.1")

@@ -35,6 +35,8 @@ COLUMNS = (
     "slab_displacement_over_lambda",
     "newton_iterations",
     "active_nodes",
+    "contact_fraction",
+    "patches",
     "branch",
 )
 
@@ -160,7 +162,7 @@ class SolveError(RuntimeError):
 
 
 def solve(
-    ar: float,
+    ar: Optional[float] = None,
     tau_max_mpa: float = 0.0,
     mesh: Union[None, int, str] = None,
     tolerance: Optional[float] = None,
@@ -174,6 +176,8 @@ def solve(
     thickness_over_lambda: Optional[float] = None,
     kinematics: str = "finite",
     vtk: Optional[str] = None,
+    profile: Optional[str] = None,
+    until_contact_fraction: Optional[float] = None,
 ) -> Result:
     """One finite-element load curve, as ``wavy solve`` with the same options computes it.
 
@@ -185,12 +189,19 @@ def solve(
     state of every converged point as a ParaView time series (``series.pvd`` and one
     ``step_NNNN.vtu`` per point), as ``wavy solve --vtk``; written only for a complete curve.
 
+    ``profile`` instead of ``ar``: an even periodic profile as ``wavy solve --profile`` takes
+    it, e.g. "1:0.1,16:0.05" (order:aspect_ratio pairs, the first of order 1);
+    ``until_contact_fraction`` loads until the contact fraction (``contact_fraction``, total
+    contact length over λ) reaches it, a profile's counterpart of ``until_a_over_lambda``.
+
     Raises ``ValueError`` for bad input (the command line's message, naming the flag) and
     :class:`SolveError` when the solver stops short, with the converged part attached.
     """
+    if (ar is None) == (profile is None):
+        raise ValueError("give exactly one of ar (a sinusoid) and profile (e.g. \"1:0.1,16:0.05\")")
     defaults = _wavy.SOLVE_DEFAULTS
     fields = _wavy.solve(
-        ar=float(ar),
+        ar=float("nan") if ar is None else float(ar),
         tau_max_mpa=float(tau_max_mpa),
         mu=float(defaults["mu"] if mu is None else mu),
         estar_mpa=float(defaults["estar_mpa"] if estar_mpa is None else estar_mpa),
@@ -208,6 +219,10 @@ def solve(
         until_p_over_estar=None if until_p_over_estar is None else float(until_p_over_estar),
         unload=bool(unload),
         vtk=None if vtk is None else str(vtk),
+        profile=None if profile is None else str(profile),
+        until_contact_fraction=None
+        if until_contact_fraction is None
+        else float(until_contact_fraction),
     )
     stopped = fields.pop("stopped")
     result = Result(fields)

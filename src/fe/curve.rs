@@ -155,6 +155,10 @@ pub struct Curve {
     /// branch, from the target back to zero load, in unloading order; empty otherwise.
     #[serde(default)]
     pub unloading: Vec<CurvePoint>,
+    /// The contact patches of each loading point (same order as `points`): `[start, end]`
+    /// in `[0, ½]` (units of λ, current positions; [`super::patches`]).
+    #[serde(default)]
+    pub patch_edges: Vec<Vec<[f64; 2]>>,
     /// Last converged state.
     pub final_state: DeformedState,
     /// What the curve cost.

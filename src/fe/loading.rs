@@ -18,6 +18,7 @@ use super::event_search::{
 use super::measure::{deformed_state, measure, EdgeAt};
 use super::model::{Model, State};
 use super::node_events::{activate_touching_anywhere, earliest_touchdown, passed_touchdowns};
+use super::patches::contact_patches;
 use super::predictor::tangent_at;
 use super::pressure_target::{land_on_pressure, Overshoot, PRESSURE_TARGET_RTOL};
 use super::step_state::Converged;
@@ -64,6 +65,8 @@ pub(crate) struct LoadPath {
     pub(crate) event_ratio: f64,
     /// Points converged so far.
     pub(crate) points: Vec<CurvePoint>,
+    /// The contact patches of each point.
+    pub(crate) patch_edges: Vec<Vec<[f64; 2]>>,
     /// Internal forces `∂Π/∂x` of `cur`.
     pub(crate) grad: Vec<f64>,
 }
@@ -78,6 +81,7 @@ impl LoadPath {
             last_increment: opts.first_step_over_amplitude * model.indenter.amplitude(),
             event_ratio: 1.0,
             points: Vec::new(),
+            patch_edges: Vec::new(),
             grad: vec![0.0; 2 * model.num_nodes()],
         }
     }
@@ -122,6 +126,7 @@ impl LoadPath {
         Curve {
             final_state: deformed_state(model, &self.cur, &self.grad, estar),
             points: self.points,
+            patch_edges: self.patch_edges,
             unloading,
             work: asm.work(),
         }
@@ -273,6 +278,9 @@ pub(crate) fn loading_branch(
             grad: &grad,
         };
         on_step(&point, at);
+        let event = if overshot.is_some() { None } else { Some(k) };
+        path.patch_edges
+            .push(contact_patches(model, &st, &grad, opts, event));
         path.advance(st, point, grad, extrapolated);
         if overshot.is_some() {
             break; // on the pressure target

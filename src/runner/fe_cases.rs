@@ -237,11 +237,13 @@ impl FeCase {
             Ok(curve) => FeOutcome {
                 points: curve.points,
                 unloading: curve.unloading,
+                patch_edges: curve.patch_edges,
                 failure: None,
             },
             Err(f) => FeOutcome {
                 points: f.points.clone(),
                 unloading: f.unloading.clone(),
+                patch_edges: Vec::new(),
                 failure: Some(f.error.to_string()),
             },
         }
@@ -264,10 +266,12 @@ impl SweepCase for FeCase {
         } else {
             ""
         };
-        format!(
-            "AR = {}, τ_max = {} MPa{cycle}",
-            self.problem.aspect_ratio, self.tau_max_mpa
-        )
+        let shape = if self.problem.finer_harmonics.is_empty() {
+            format!("AR = {}", self.problem.aspect_ratio)
+        } else {
+            format!("profile {}", self.problem.profile())
+        };
+        format!("{shape}, τ_max = {} MPa{cycle}", self.tau_max_mpa)
     }
 
     /// The time of a curve grows with the element count, the aspect ratio and friction (the
@@ -289,6 +293,9 @@ pub struct FeOutcome {
     pub points: Vec<CurvePoint>,
     /// The unloading branch of a cycle ([`FeCase::with_unloading`]); empty otherwise.
     pub unloading: Vec<CurvePoint>,
+    /// The contact patches of each point of a complete loading branch (`fe::Curve::patch_edges`);
+    /// empty for an incomplete curve.
+    pub patch_edges: Vec<Vec<[f64; 2]>>,
     /// The solver's error when it stopped before the target a/λ.
     pub failure: Option<String>,
 }
@@ -314,6 +321,10 @@ impl FeOutcome {
 /// The line of the cache text between the loading and the unloading rows.
 const UNLOADING_LINE: &str = "unloading";
 
+/// The line of the cache text before the patch rows (one per loading point: the edges of its
+/// patches, space-separated, `start end start end …`).
+const PATCHES_LINE: &str = "patches";
+
 impl Cacheable for FeOutcome {
     fn to_cache_text(&self) -> String {
         let mut s = String::from("status ");
@@ -338,6 +349,18 @@ impl Cacheable for FeOutcome {
                 s.push('\n');
             }
         }
+        if !self.patch_edges.is_empty() {
+            s.push_str(PATCHES_LINE);
+            s.push('\n');
+            for patches in &self.patch_edges {
+                let edges: Vec<String> = patches
+                    .iter()
+                    .flat_map(|p| [p[0].to_string(), p[1].to_string()])
+                    .collect();
+                s.push_str(&edges.join(" "));
+                s.push('\n');
+            }
+        }
         s
     }
 
@@ -351,10 +374,24 @@ impl Cacheable for FeOutcome {
         if lines.next()? != CurvePoint::CSV_HEADER {
             return None;
         }
-        let rows: Vec<&str> = lines.collect();
+        let all: Vec<&str> = lines.collect();
+        let (rows, patch_rows) = match all.iter().position(|&l| l == PATCHES_LINE) {
+            Some(i) => (&all[..i], &all[i + 1..]),
+            None => (&all[..], &[][..]),
+        };
+        let patch_edges = patch_rows
+            .iter()
+            .map(|l| {
+                let x: Vec<f64> = l
+                    .split_whitespace()
+                    .map(|v| v.parse().ok())
+                    .collect::<Option<_>>()?;
+                (x.len() % 2 == 0).then(|| x.chunks(2).map(|c| [c[0], c[1]]).collect())
+            })
+            .collect::<Option<Vec<Vec<[f64; 2]>>>>()?;
         let (loading, unloading) = match rows.iter().position(|&l| l == UNLOADING_LINE) {
             Some(i) => (&rows[..i], &rows[i + 1..]),
-            None => (&rows[..], &[][..]),
+            None => (rows, &[][..]),
         };
         let parse = |rows: &[&str]| {
             rows.iter()
@@ -364,6 +401,7 @@ impl Cacheable for FeOutcome {
         Some(FeOutcome {
             points: parse(loading)?,
             unloading: parse(unloading)?,
+            patch_edges,
             failure,
         })
     }
@@ -381,6 +419,7 @@ mod tests {
                 let o = FeOutcome {
                     points: vec![p, p],
                     unloading,
+                    patch_edges: vec![vec![[0.0, 0.1 + 0.2]], vec![[0.0, 0.3], [1.0 / 3.0, 0.5]]],
                     failure: failure.clone(),
                 };
                 assert_eq!(FeOutcome::from_cache_text(&o.to_cache_text()), Some(o));
