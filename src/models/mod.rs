@@ -1,4 +1,5 @@
-//! Closed-form contact laws p̄/E*(a/λ) for a rigid sinusoid on a soft solid, and their inverse.
+//! Closed-form contact laws p̄/E*(a/λ) for a rigid sinusoid on a soft solid, their inverse, and
+//! the superposition of two of them for a two-scale profile (`superposition`, R13).
 //!
 //! Everything here is dimensionless: the contact half-width enters as `a_over_lambda`
 //! (a/λ ∈ [0, ½], ½ = full contact), the mean pressure as `p_over_estar` (p̄/E*), the
@@ -9,12 +10,17 @@
 pub mod coefficient_sets;
 pub mod domain;
 pub mod inverse;
+pub mod superposition;
 pub mod westergaard;
 pub mod wnl;
 
 pub use coefficient_sets::CoefficientSet;
 pub use domain::FitDomain;
 pub use inverse::{a_over_lambda_at, InverseError};
+pub use superposition::{
+    contact_fraction_limit, superposed_contact, BigWaveDistribution, CrestContact, CrestState,
+    SuperposedContact, SuperpositionError,
+};
 pub use westergaard::Westergaard;
 pub use wnl::{Coefficients, Reading, Wnl};
 
