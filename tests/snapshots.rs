@@ -4,14 +4,14 @@
 //! cache (a temporary folder: no test reads or writes the developer's `.wavy-cache/`), so the
 //! snapshots pin the solver itself, not a cache. The specs in [`HEAVY_SPECS`] take
 //! tens of minutes (meshes up to 144 elements along the face): make test pins a test-size run of
-//! each (`tests/speed_accuracy.rs`), and CI's `make stale` recomputes them in full and compares
+//! each (`tests/speed_accuracy.rs`, `tests/two_scale.rs`), and CI's `make stale` recomputes them in full and compares
 //! with the committed figures. A snapshot only says "did our
 //! output change?"; review changes with `cargo insta review`.
 
 use wavy::runner::{run_spec_file, RunOptions};
 
 /// Specs too heavy for make test (see the module docs).
-const HEAVY_SPECS: [&str; 1] = ["speed_accuracy.toml"];
+const HEAVY_SPECS: [&str; 2] = ["speed_accuracy.toml", "two_scale.toml"];
 
 fn test_options(cache: &std::path::Path) -> RunOptions {
     let mut opts = RunOptions {

@@ -37,6 +37,7 @@ scene_registry! {
     table1_refit::Table1RefitScene,
     speed_accuracy::SpeedAccuracyScene,
     hysteresis::HysteresisScene,
+    two_scale::TwoScaleScene,
 }
 
 pub use atomic_write::write_atomic;

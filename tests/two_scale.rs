@@ -1,0 +1,28 @@
+//! The two-scale scene at test size (`tests/specs/two_scale_small.toml`; the full scene,
+//! `experiments/two_scale.toml`, is recomputed by CI's `make stale`): its tables are pinned by
+//! snapshots, and the models' errors against the FE are what the scene's own table says.
+
+use std::path::Path;
+use wavy::runner::{run_spec_file, RunOptions};
+
+#[test]
+fn test_size_two_scale_scene() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let cache = tempfile::tempdir().unwrap();
+    let mut opts = RunOptions::default();
+    opts.sweep.cache_dir = cache.path().to_path_buf();
+    let out = run_spec_file(&root.join("tests/specs/two_scale_small.toml"), &opts).unwrap();
+    assert!(out.incomplete.is_empty(), "{:?}", out.incomplete);
+    let curves = &out.tables[0];
+    let errors = &out.tables[1];
+    // the FE contact splits into several patches on the way
+    let patches = curves.header.iter().position(|h| h == "patches").unwrap();
+    let most = curves
+        .rows
+        .iter()
+        .filter_map(|r| r[patches].to_string().parse::<f64>().ok())
+        .fold(0.0, f64::max);
+    assert!(most >= 2.0, "{most}");
+    insta::assert_snapshot!("two_scale_small_curves", curves.to_csv());
+    insta::assert_snapshot!("two_scale_small_errors", errors.to_csv());
+}
