@@ -6,7 +6,8 @@
 //!   and inverse), [`fe`] (the finite-strain finite-element solver), [`fit`] (re-deriving
 //!   Table 1), [`accuracy`] (the tiers that answer p̄(a), their measured errors and costs, and
 //!   the choice of the cheapest that meets a tolerance), [`profile`] (even periodic surface profiles
-//!   as cosine harmonics), [`csv_text`] (the one reader of our CSV
+//!   as cosine harmonics), [`bem`] (the periodic FFT boundary-element reference solver: a rigid
+//!   profile on a linear elastic half-plane), [`csv_text`] (the one reader of our CSV
 //!   tables as text);
 //! - output primitives: [`numfmt`] (the one float formatter), [`table`] (tables, CSV,
 //!   comparison), [`plot`] (deterministic SVG), [`vtk`] (the deformed states as a ParaView
@@ -19,6 +20,7 @@
 
 pub mod accuracy;
 pub mod atomic_write;
+pub mod bem;
 pub mod csv_text;
 pub mod defaults;
 pub mod fe;

@@ -10,7 +10,9 @@ use std::path::{Path, PathBuf};
 const LAYERS: &[(&str, &[&str])] = &[
     (
         "core",
-        &["models", "fe", "fit", "accuracy", "profile", "csv_text"],
+        &[
+            "models", "fe", "fit", "accuracy", "profile", "bem", "csv_text",
+        ],
     ),
     (
         "output primitives",
