@@ -40,14 +40,13 @@ pub const MAX_HARMONICS: usize = 8;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "Vec<Harmonic>", into = "Vec<Harmonic>")]
 pub struct FinerHarmonics {
-    len: usize,
+    /// The harmonics first, then `None`s.
     items: [Option<Harmonic>; MAX_HARMONICS - 1],
 }
 
 impl FinerHarmonics {
     /// No finer harmonic: a single sinusoid.
     pub const NONE: FinerHarmonics = FinerHarmonics {
-        len: 0,
         items: [None; MAX_HARMONICS - 1],
     };
 
@@ -74,23 +73,20 @@ impl FinerHarmonics {
                     allowed: ">= 0",
                 });
             }
+            out.items[out.iter().count()] = Some(h);
             last_order = h.order;
-            out.items[out.len] = Some(h);
-            out.len += 1;
         }
         Ok(out)
     }
 
     /// The harmonics, in order.
     pub fn iter(&self) -> impl Iterator<Item = Harmonic> + '_ {
-        self.items[..self.len]
-            .iter()
-            .map(|h| h.expect("within len"))
+        self.items.iter().map_while(|h| *h)
     }
 
     /// Whether there is none.
     pub fn is_empty(&self) -> bool {
-        self.len == 0
+        self.items[0].is_none()
     }
 }
 
@@ -200,8 +196,8 @@ impl Profile {
         .chain(self.finer.iter())
     }
 
-    /// Whether this is a single sinusoid (no finer harmonic, or only ones of zero amplitude
-    /// count as finer: this asks for none at all).
+    /// Whether this is a single sinusoid: no finer harmonic at all (a finer harmonic of zero
+    /// amplitude still makes a profile, solved by node events).
     pub fn is_sinusoid(&self) -> bool {
         self.finer.is_empty()
     }

@@ -1,6 +1,7 @@
 //! The two-scale scene at test size (`tests/specs/two_scale_small.toml`; the full scene,
-//! `experiments/two_scale.toml`, is recomputed by CI's `make stale`): its tables are pinned by
-//! snapshots, and the models' errors against the FE are what the scene's own table says.
+//! `experiments/two_scale.toml`, is recomputed by CI's `make stale`): the FE contact splits
+//! into several patches, and its tables (curves, the models' errors against the FE) are pinned
+//! by snapshots.
 
 use std::path::Path;
 use wavy::runner::{run_spec_file, RunOptions};

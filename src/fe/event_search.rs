@@ -91,10 +91,21 @@ pub(crate) fn next_target(model: &Model, st: &State, a: f64, da_target: f64) -> 
 /// enter the step active (left free, they penetrate deeply and their late activation
 /// stalls the edge solve).
 pub(crate) fn activate_touching(model: &Model, st: &mut State, target: usize) {
+    let range = last_active(st) + 1..target;
+    activate_touching_among(model, st, range);
+}
+
+/// Activate those of the free contact-face nodes `nodes` that touch (gap at most
+/// [`open_gap_tolerance`]), then put the active nodes back on the indenter.
+pub(crate) fn activate_touching_among(
+    model: &Model,
+    st: &mut State,
+    nodes: impl Iterator<Item = usize>,
+) {
     let gaps = model.gaps(st);
     let open_tol = open_gap_tolerance(model);
-    let touching: Vec<usize> = (last_active(st) + 1..target)
-        .filter(|&i| gaps[i] <= open_tol)
+    let touching: Vec<usize> = nodes
+        .filter(|&i| !st.active[i] && gaps[i] <= open_tol)
         .collect();
     if !touching.is_empty() {
         for i in touching {

@@ -15,10 +15,9 @@ use super::error::{CurveFailure, SolveError};
 use super::event_search::{
     activate_touching, closing_increment, event_gap_tolerance, next_target, EventSearch,
 };
-use super::measure::{deformed_state, measure, EdgeAt};
+use super::measure::{deformed_state, measure, EdgeAt, Measured};
 use super::model::{Model, State};
 use super::node_events::{activate_touching_anywhere, earliest_touchdown, passed_touchdowns};
-use super::patches::contact_patches;
 use super::predictor::tangent_at;
 use super::pressure_target::{land_on_pressure, Overshoot, PRESSURE_TARGET_RTOL};
 use super::step_state::Converged;
@@ -86,17 +85,17 @@ impl LoadPath {
         }
     }
 
-    /// Move on to the converged event `st` with its point and forces; `extrapolated` is
+    /// Move on to the converged event `st` with its point, forces and patches; `extrapolated` is
     /// the increment the load tangent predicted for it.
-    pub(crate) fn advance(
-        &mut self,
-        st: State,
-        point: CurvePoint,
-        grad: Vec<f64>,
-        extrapolated: Option<f64>,
-    ) {
+    pub(crate) fn advance(&mut self, st: State, measured: Measured, extrapolated: Option<f64>) {
+        let Measured {
+            point,
+            grad,
+            patches,
+        } = measured;
         self.a = point.a_over_lambda;
         self.points.push(point);
+        self.patch_edges.push(patches);
         self.grad = grad;
         self.last_increment = st.d - self.cur.d;
         if let Some(e) = extrapolated {
@@ -248,15 +247,17 @@ pub(crate) fn loading_branch(
         } else {
             EdgeAt::Node(k)
         };
-        let (mut point, grad) = measure(model, asm, &st, estar, edge, opts);
-        point.newton_iterations = iters;
-        let overshot = opts.until_p_over_estar.filter(|&t| point.p_over_estar > t);
+        let mut measured = measure(model, asm, &st, estar, edge, opts);
+        measured.point.newton_iterations = iters;
+        let overshot = opts
+            .until_p_over_estar
+            .filter(|&t| measured.point.p_over_estar > t);
         // the event that overshoots the pressure target is replaced by the state on it,
         // between the last converged state and this event
-        let (st, point, grad, extrapolated) = match overshot {
-            None => (st, point, grad, extrapolated),
+        let (st, measured, extrapolated) = match overshot {
+            None => (st, measured, extrapolated),
             Some(target) => {
-                let event = (st.d, point.p_over_estar);
+                let event = (st.d, measured.point.p_over_estar);
                 let overshoot = Overshoot {
                     below: &path.cur,
                     below_p_over_estar: path.points.last().map_or(0.0, |p| p.p_over_estar),
@@ -264,9 +265,9 @@ pub(crate) fn loading_branch(
                     event,
                 };
                 match land_on_pressure(model, asm, opts, estar, overshoot, target) {
-                    Ok((st, mut point, grad, it)) => {
-                        point.newton_iterations = iters + it;
-                        (st, point, grad, None)
+                    Ok((st, mut landed, it)) => {
+                        landed.point.newton_iterations = iters + it;
+                        (st, landed, None)
                     }
                     Err(f) => return Err(path.fail(f.into_error(step, event.0))),
                 }
@@ -275,13 +276,10 @@ pub(crate) fn loading_branch(
         let at = Converged {
             model,
             state: &st,
-            grad: &grad,
+            grad: &measured.grad,
         };
-        on_step(&point, at);
-        let event = if overshot.is_some() { None } else { Some(k) };
-        path.patch_edges
-            .push(contact_patches(model, &st, &grad, opts, event));
-        path.advance(st, point, grad, extrapolated);
+        on_step(&measured.point, at);
+        path.advance(st, measured, extrapolated);
         if overshot.is_some() {
             break; // on the pressure target
         }

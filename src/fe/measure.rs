@@ -31,8 +31,18 @@ pub(crate) enum EdgeAt {
     OutermostPatch(Option<usize>),
 }
 
-/// The point of a converged state with its contact half-width where `edge` says, and its
-/// internal forces `∂Π/∂x`.
+/// What [`measure`] finds in a converged state.
+pub(crate) struct Measured {
+    /// Its point on the curve.
+    pub(crate) point: CurvePoint,
+    /// Its internal forces `∂Π/∂x`.
+    pub(crate) grad: Vec<f64>,
+    /// Its contact patches ([`contact_patches`]), which the point counts and sums.
+    pub(crate) patches: Vec<[f64; 2]>,
+}
+
+/// The point of a converged state with its contact half-width where `edge` says, its internal
+/// forces and its contact patches.
 pub(crate) fn measure(
     model: &Model,
     asm: &mut Assembly,
@@ -40,7 +50,7 @@ pub(crate) fn measure(
     estar: f64,
     edge: EdgeAt,
     opts: &SolveOptions,
-) -> (CurvePoint, Vec<f64>) {
+) -> Measured {
     let f = asm
         .assemble(model, st, false)
         .expect("converged state is not inverted");
@@ -55,8 +65,8 @@ pub(crate) fn measure(
         EdgeAt::Node(k) => edge_position(model, st, k, opts.edge_rule),
         EdgeAt::OutermostPatch(_) => patches.last().map_or(0.0, |p| p[1]),
     };
-    (
-        CurvePoint {
+    Measured {
+        point: CurvePoint {
             a_over_lambda,
             p_over_estar: p_tr,
             p_over_estar_reaction: p_re,
@@ -66,8 +76,9 @@ pub(crate) fn measure(
             contact_fraction: contact_fraction(&patches),
             patches: patches.len(),
         },
-        f.grad,
-    )
+        grad: f.grad,
+        patches,
+    }
 }
 
 /// [`measure`] for a converged state that is not an edge event: the edge in the last loaded
@@ -78,7 +89,7 @@ pub(crate) fn measure_between_events(
     st: &State,
     estar: f64,
     opts: &SolveOptions,
-) -> (CurvePoint, Vec<f64>) {
+) -> Measured {
     let f = asm
         .assemble(model, st, false)
         .expect("converged state is not inverted");

@@ -13,7 +13,7 @@
 //! For a single sinusoid the first free node to touch is the one beyond the edge, and the
 //! events are the edge events of [`super::event_search`].
 
-use super::event_search::{closing_increment, open_gap_tolerance};
+use super::event_search::{activate_touching_among, closing_increment, open_gap_tolerance};
 use super::model::{Model, State};
 
 /// Free contact-face nodes with a clearly open gap: the candidates of the next event.
@@ -30,20 +30,7 @@ fn open_nodes(model: &Model, st: &State) -> Vec<(usize, f64)> {
 /// Activate every free node that touches (gap at most the open-gap tolerance, left so by the
 /// last event with a vanishing force): it carries load as soon as the load grows.
 pub(crate) fn activate_touching_anywhere(model: &Model, st: &mut State) {
-    let open_tol = open_gap_tolerance(model);
-    let touching: Vec<usize> = model
-        .gaps(st)
-        .into_iter()
-        .enumerate()
-        .filter(|&(i, g)| !st.active[i] && g <= open_tol)
-        .map(|(i, _)| i)
-        .collect();
-    if !touching.is_empty() {
-        for i in touching {
-            model.activate(st, i);
-        }
-        model.enforce_constraints(st);
-    }
+    activate_touching_among(model, st, 0..st.active.len());
 }
 
 /// The first of `candidates` to close: the smallest closing increment along the tangent `z`,

@@ -3,11 +3,11 @@
 
 use super::assembly::Assembly;
 use super::error::StepFail;
-use super::measure::{mean_pressure_over_estar, measure_between_events};
+use super::measure::{mean_pressure_over_estar, measure_between_events, Measured};
 use super::model::{Model, State};
 use super::predictor::displacement_step;
 use super::step_control::{RegulaFalsi, StepCuts, Trial};
-use super::{CurvePoint, SolveOptions};
+use super::SolveOptions;
 
 /// Relative tolerance on `p̄/E*` of the landing on a pressure target
 /// ([`SolveOptions::until_p_over_estar`]): far below the solver's other errors (the
@@ -35,8 +35,9 @@ pub(crate) struct Overshoot<'a> {
 /// displacement (Illinois variant), each trial a displacement-controlled step with the
 /// friction history of the last converged state, equilibrated with its active set and the
 /// event's `node` kept free ([`displacement_step`]); a trial that fails is halved (at most
-/// `max_step_cuts` times). Returns the state (slip committed), its point
-/// ([`measure_between_events`]), its forces and the Newton iterations spent.
+/// `max_step_cuts` times). Returns the state (slip committed), what
+/// [`measure_between_events`] finds in it (point, forces, patches) and the Newton iterations
+/// spent.
 pub(crate) fn land_on_pressure(
     model: &Model,
     asm: &mut Assembly,
@@ -44,7 +45,7 @@ pub(crate) fn land_on_pressure(
     estar: f64,
     overshoot: Overshoot<'_>,
     target: f64,
-) -> Result<(State, CurvePoint, Vec<f64>, usize), StepFail> {
+) -> Result<(State, Measured, usize), StepFail> {
     // the residual of the regula falsi: how far a trial's p̄/E* lies below the target;
     // each trial starts from the converged trial nearest below the target (its friction
     // history is still the last converged state's: only the starting point moves)
@@ -86,8 +87,8 @@ pub(crate) fn land_on_pressure(
         if (p - target).abs() <= PRESSURE_TARGET_RTOL * target {
             let mut st = st;
             model.commit_slip(&mut st);
-            let (point, grad) = measure_between_events(model, asm, &st, estar, opts);
-            return Ok((st, point, grad, iters));
+            let measured = measure_between_events(model, asm, &st, estar, opts);
+            return Ok((st, measured, iters));
         }
         search.insert(Trial {
             x: d,

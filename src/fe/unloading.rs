@@ -4,7 +4,7 @@
 use super::assembly::Assembly;
 use super::error::{CurveFailure, SolveError};
 use super::loading::{loading_branch, LoadPath};
-use super::measure::measure_between_events;
+use super::measure::{measure_between_events, Measured};
 use super::model::Model;
 use super::predictor::displacement_step;
 use super::step_control::StepCuts;
@@ -119,7 +119,9 @@ fn unload(
         match displacement_step(model, asm, opts, &base, target, None) {
             Ok((mut st, iters)) if scheduled => {
                 model.commit_slip(&mut st);
-                let (mut point, grad) = measure_between_events(model, asm, &st, estar, opts);
+                let Measured {
+                    mut point, grad, ..
+                } = measure_between_events(model, asm, &st, estar, opts);
                 point.newton_iterations = iters;
                 let at = Converged {
                     model,

@@ -13,8 +13,8 @@ use super::scene_output::{Layout, Remarks};
 use super::scenes::{Scene, SceneContext, SceneResult};
 use super::RunOptions;
 use crate::fe::{Grading, MeshLevel, SolveOptions};
-use crate::models::superposition::superposed_contact;
-use crate::models::{a_over_lambda_at, CoefficientSet, ModelKind, ModelLaw, Reading};
+use crate::models::superposition::{superposed_contact, SuperpositionError};
+use crate::models::{a_over_lambda_at, InverseError, CoefficientSet, ModelKind, ModelLaw, Reading};
 use crate::numfmt::sig_digits;
 use crate::plot::{padded_range, LegendPosition, Panel, Series};
 use crate::profile::{Harmonic, Profile};
@@ -54,18 +54,46 @@ pub struct TwoScaleScene {
     pub coefficients: CoefficientSet,
 }
 
-/// The models compared with the FE, by their names in the tables.
-const MODELS: [&str; 3] = [
-    "superposition-westergaard",
-    "superposition-wnl",
-    "big-wave-wnl",
-];
+/// A model compared with the FE.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Model {
+    /// The superposition (R13) with Westergaard's law for both scales (frictionless).
+    SuperpositionWestergaard,
+    /// The superposition with the WNL law for both scales.
+    SuperpositionWnl,
+    /// The big wave's WNL law alone: `2a₁/λ`.
+    BigWaveWnl,
+}
 
-const COLORS: [RGBColor; 3] = [
-    RGBColor(31, 119, 180),
-    RGBColor(44, 160, 44),
-    RGBColor(127, 127, 127),
-];
+impl Model {
+    const ALL: [Model; 3] = [
+        Model::SuperpositionWestergaard,
+        Model::SuperpositionWnl,
+        Model::BigWaveWnl,
+    ];
+
+    /// The name in the tables.
+    fn name(self) -> &'static str {
+        match self {
+            Model::SuperpositionWestergaard => "superposition-westergaard",
+            Model::SuperpositionWnl => "superposition-wnl",
+            Model::BigWaveWnl => "big-wave-wnl",
+        }
+    }
+
+    fn color(self) -> RGBColor {
+        match self {
+            Model::SuperpositionWestergaard => RGBColor(31, 119, 180),
+            Model::SuperpositionWnl => RGBColor(44, 160, 44),
+            Model::BigWaveWnl => RGBColor(127, 127, 127),
+        }
+    }
+
+    /// Whether its curve does not depend on τ_max (drawn once).
+    fn frictionless(self) -> bool {
+        self == Model::SuperpositionWestergaard
+    }
+}
 
 /// FE curve colours per τ_max (black, red, …).
 const FE_COLORS: [RGBColor; 3] = [
@@ -123,22 +151,44 @@ impl TwoScaleScene {
         )
     }
 
-    /// The contact fraction of model `m` for profile `profile` at τ_max and p̄/E*.
-    fn model_fraction(&self, m: usize, profile: &Profile, tau: f64, p: f64) -> Result<f64> {
+    /// The contact fraction of `model` for `profile` at τ_max and p̄/E*; `None` at or beyond
+    /// the big wave's full contact, where the model has no answer (any other failure is an
+    /// error).
+    fn model_fraction(
+        &self,
+        model: Model,
+        profile: &Profile,
+        tau: f64,
+        p: f64,
+    ) -> Result<Option<f64>> {
         let fine = profile.finer.iter().next().expect("two-scale");
         let big_ar = profile.aspect_ratio;
-        let westergaard = |ar| ModelLaw::new(ModelKind::Westergaard, ar, 0.0, self.reading, self.coefficients);
-        Ok(match m {
-            0 => {
-                superposed_contact(&westergaard(big_ar), &westergaard(fine.aspect_ratio), fine.order, p)?
-                    .contact_fraction
+        let westergaard =
+            |ar| ModelLaw::new(ModelKind::Westergaard, ar, 0.0, self.reading, self.coefficients);
+        let superposed = |big: &ModelLaw, small: &ModelLaw| {
+            match superposed_contact(big, small, fine.order, p) {
+                Ok(c) => Ok(Some(c.contact_fraction)),
+                Err(SuperpositionError::BigFullContact { .. })
+                | Err(SuperpositionError::BigInverse {
+                    source: InverseError::AboveFullContact { .. },
+                    ..
+                }) => Ok(None),
+                Err(e) => Err(e.into()),
             }
-            1 => {
-                let (big, small) = (self.wnl(big_ar, tau), self.wnl(fine.aspect_ratio, tau));
-                superposed_contact(&big, &small, fine.order, p)?.contact_fraction
+        };
+        match model {
+            Model::SuperpositionWestergaard => {
+                superposed(&westergaard(big_ar), &westergaard(fine.aspect_ratio))
             }
-            _ => 2.0 * a_over_lambda_at(&self.wnl(big_ar, tau), p)?,
-        })
+            Model::SuperpositionWnl => {
+                superposed(&self.wnl(big_ar, tau), &self.wnl(fine.aspect_ratio, tau))
+            }
+            Model::BigWaveWnl => match a_over_lambda_at(&self.wnl(big_ar, tau), p) {
+                Ok(a) => Ok(Some(2.0 * a)),
+                Err(InverseError::AboveFullContact { .. }) => Ok(None),
+                Err(e) => Err(e.into()),
+            },
+        }
     }
 }
 
@@ -228,18 +278,17 @@ fn run(title: &str, s: &TwoScaleScene, opts: &RunOptions) -> Result<SceneResult>
                 fe.points.iter().map(|p| (p.p_over_estar, p.contact_fraction)).collect(),
             ));
             let p_max = fe.points.last().map_or(0.0, |p| p.p_over_estar);
-            for (m, model) in MODELS.iter().enumerate() {
-                // Westergaard's superposition is frictionless: drawn once
-                let drawn = m != 0 || t == 0;
+            for model in Model::ALL {
+                let drawn = !model.frictionless() || t == 0;
                 let mut line = vec![];
                 for k in 1..=s.model_points {
                     let p = p_max * k as f64 / s.model_points as f64;
-                    if let Ok(c) = s.model_fraction(m, &profile, tau, p) {
+                    if let Some(c) = s.model_fraction(model, &profile, tau, p)? {
                         line.push((p, c));
                         curves.push(vec![
                             name.clone().into(),
                             tau.into(),
-                            (*model).into(),
+                            model.name().into(),
                             p.into(),
                             c.into(),
                             Cell::Empty,
@@ -247,14 +296,14 @@ fn run(title: &str, s: &TwoScaleScene, opts: &RunOptions) -> Result<SceneResult>
                     }
                 }
                 if drawn {
-                    let label = if m == 0 {
-                        (*model).to_string()
+                    let label = if model.frictionless() {
+                        model.name().to_string()
                     } else {
-                        format!("{model}, τ_max = {tau} MPa")
+                        format!("{}, τ_max = {tau} MPa", model.name())
                     };
-                    series.push(Series::dashed(Some(label), COLORS[m], 1 + t as u32, line));
+                    series.push(Series::dashed(Some(label), model.color(), 1 + t as u32, line));
                 }
-                errors.push(error_row(s, &name, tau, m, &profile, fe)?);
+                errors.push(error_row(s, &name, tau, model, &profile, fe)?);
             }
         }
         let x_range = padded_range(series.iter().flat_map(|l| l.points.iter().map(|p| p.0)));
@@ -287,19 +336,19 @@ fn run(title: &str, s: &TwoScaleScene, opts: &RunOptions) -> Result<SceneResult>
     Ok(remarks.finish(title, layout, panels, vec![curves, errors]))
 }
 
-/// The errors of model `m` against the FE curve at its points with a contact fraction of at
+/// The errors of `model` against the FE curve at its points with a contact fraction of at
 /// least `error_from_contact_fraction` (where the model has an answer).
 fn error_row(
     s: &TwoScaleScene,
     name: &str,
     tau: f64,
-    m: usize,
+    model: Model,
     profile: &Profile,
     fe: &FeOutcome,
 ) -> Result<Vec<Cell>> {
     let (mut count, mut max_rel, mut sum_sq, mut max_abs) = (0usize, 0.0_f64, 0.0, 0.0_f64);
     for p in fe.points.iter().filter(|p| p.contact_fraction >= s.error_from_contact_fraction) {
-        if let Ok(c) = s.model_fraction(m, profile, tau, p.p_over_estar) {
+        if let Some(c) = s.model_fraction(model, profile, tau, p.p_over_estar)? {
             let rel = c / p.contact_fraction - 1.0;
             count += 1;
             max_rel = max_rel.max(rel.abs());
@@ -311,7 +360,7 @@ fn error_row(
     Ok(vec![
         name.into(),
         tau.into(),
-        MODELS[m].into(),
+        model.name().into(),
         Cell::Num(count as f64),
         (count > 0).then_some(max_rel).into(),
         rms.into(),
