@@ -25,7 +25,8 @@
 //!   header are skipped; fields may be quoted.
 //! - `rows: F | F | …`: one filter per body row of the table, in order (several `rows:` lines are
 //!   joined). A filter is `column=value,column=value` (values compared as numbers when both parse,
-//!   else as text; `column=` matches an empty field) or `*` (every CSV row).
+//!   else as text; `column=` matches an empty field; a value in double quotes may hold commas)
+//!   or `*` (every CSV row).
 //! - `col N: TEMPLATE`: the text of column N (1-based) in every body row. Columns without a `col`
 //!   line are not checked (labels that are not in the CSV). A template is literal text with
 //!   placeholders `{EXPR:FORMAT}` or `{EXPR:FORMAT|TEXT}` (TEXT when the field is empty).
@@ -73,6 +74,7 @@ const MUST_BE_CHECKED: &[&str] = &[
     "figures/speed_accuracy.csv",
     "figures/speed_accuracy_bands.csv",
     "figures/speed_accuracy_reference.csv",
+    "figures/two_scale_errors.csv",
 ];
 
 fn root() -> PathBuf {
@@ -174,14 +176,38 @@ fn parse_filter(text: &str) -> Result<Filter, String> {
     if text == "*" || text.is_empty() {
         return Ok(Vec::new());
     }
-    text.split(',')
+    split_outside_quotes(text)
+        .into_iter()
         .map(|kv| {
             let (k, v) = kv
                 .split_once('=')
                 .ok_or(format!("filter `{kv}` is not column=value"))?;
-            Ok((k.trim().to_string(), v.trim().to_string()))
+            let v = v.trim();
+            let v = v
+                .strip_prefix('"')
+                .and_then(|v| v.strip_suffix('"'))
+                .unwrap_or(v);
+            Ok((k.trim().to_string(), v.to_string()))
         })
         .collect()
+}
+
+/// `text` split at the commas that are not inside double quotes (a quoted value may hold commas).
+fn split_outside_quotes(text: &str) -> Vec<&str> {
+    let mut parts = Vec::new();
+    let (mut start, mut quoted) = (0, false);
+    for (i, c) in text.char_indices() {
+        match c {
+            '"' => quoted = !quoted,
+            ',' if !quoted => {
+                parts.push(&text[start..i]);
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    parts.push(&text[start..]);
+    parts
 }
 
 fn same_value(field: &str, want: &str) -> bool {
@@ -622,4 +648,18 @@ fn relative_links_point_to_files() {
     }
     println!("{count} relative links checked");
     assert!(dead.is_empty(), "dead links:\n{}", dead.join("\n"));
+}
+
+/// A quoted filter value keeps its commas; unquoted ones split.
+#[test]
+fn quoted_filter_values_hold_commas() {
+    let f = parse_filter(r#"profile="1:0.1,8:0.05",tau_max_mpa=0"#).unwrap();
+    assert_eq!(
+        f,
+        vec![
+            ("profile".to_string(), "1:0.1,8:0.05".to_string()),
+            ("tau_max_mpa".to_string(), "0".to_string())
+        ]
+    );
+    assert_eq!(parse_filter("a=1,b=2").unwrap().len(), 2);
 }

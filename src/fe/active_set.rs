@@ -20,18 +20,44 @@ use super::SolveOptions;
 /// problem and above the underflow threshold of doubles.
 const MULTIPLIER_SCALE_FLOOR: f64 = 1e-300;
 
+/// Contact-face nodes whose contact status the active-set updates of one load step leave as
+/// they are.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Hold {
+    /// Never activated: the target of a touchdown event, below its event.
+    pub(crate) free: Option<usize>,
+    /// Never released: the node of a release event, before its release
+    /// ([`super::release_events`]).
+    pub(crate) active: Option<usize>,
+}
+
+impl Hold {
+    /// Every node follows the active-set rules.
+    pub(crate) const NONE: Hold = Hold {
+        free: None,
+        active: None,
+    };
+
+    /// Node `k` is held free (if any), the others follow the rules.
+    pub(crate) fn free(k: Option<usize>) -> Hold {
+        Hold {
+            free: k,
+            active: None,
+        }
+    }
+}
+
 /// Converge one load step at its slab displacement: Newton passes ([`newton`]) and
-/// active-set updates. `free_node` names a contact-face node that is never activated (the
-/// target of an edge event, below its event). Returns the total number of Newton
-/// iterations.
+/// active-set updates, the nodes of `hold` kept as they are. Returns the total number of
+/// Newton iterations.
 pub(crate) fn equilibrate(
     model: &Model,
     asm: &mut Assembly,
     st: &mut State,
     opts: &SolveOptions,
-    free_node: Option<usize>,
+    hold: Hold,
 ) -> Result<usize, StepFail> {
-    active_set_passes(model, asm, st, opts, free_node, |model, asm, st, rtol| {
+    active_set_passes(model, asm, st, opts, hold, |model, asm, st, rtol| {
         newton(model, asm, st, opts, rtol)
     })
 }
@@ -48,20 +74,48 @@ pub(crate) fn equilibrate_event(
     node: usize,
     gap_tol: f64,
 ) -> Result<usize, StepFail> {
-    active_set_passes(model, asm, st, opts, Some(node), |model, asm, st, rtol| {
-        newton_bordered(model, asm, st, opts, node, gap_tol, rtol)
-    })
+    active_set_passes(
+        model,
+        asm,
+        st,
+        opts,
+        Hold::free(Some(node)),
+        |model, asm, st, rtol| newton_bordered(model, asm, st, opts, node, gap_tol, rtol),
+    )
+}
+
+/// What the release test compares, per contact-face node of the state `st` with internal forces
+/// `grad`: the vertical multiplier λ = ∂Π/∂y without friction (the same sign as the normal
+/// force at equilibrium, and insensitive to the tangential residual left by loose passes:
+/// testing N there costs more Newton iterations); the normal force N with friction, where
+/// λ = (N + y_s' T)/w can differ in sign from N. A node is released when its value is below
+/// `−multiplier_rtol` times the largest magnitude ([`release_scale`]).
+pub(crate) fn release_forces(model: &Model, st: &State, grad: &[f64]) -> Vec<f64> {
+    if model.is_potential() {
+        model.multipliers(st, grad)
+    } else {
+        model.normal_forces(st, grad)
+    }
+}
+
+/// The scale of the release test: the largest magnitude of `release_force`
+/// ([`release_forces`]), at least [`MULTIPLIER_SCALE_FLOOR`].
+pub(crate) fn release_scale(release_force: &[f64]) -> f64 {
+    release_force
+        .iter()
+        .fold(0.0_f64, |m, l| m.max(l.abs()))
+        .max(MULTIPLIER_SCALE_FLOOR)
 }
 
 /// The active-set loop: `newton_pass` at a residual tolerance, then release and activation
-/// (`free_node` never activated), until a pass at the tight tolerance leaves the set as it
-/// is.
+/// (the nodes of `hold` left as they are), until a pass at the tight tolerance leaves the set
+/// as it is.
 fn active_set_passes(
     model: &Model,
     asm: &mut Assembly,
     st: &mut State,
     opts: &SolveOptions,
-    free_node: Option<usize>,
+    hold: Hold,
     mut newton_pass: impl FnMut(&Model, &mut Assembly, &mut State, f64) -> Result<usize, StepFail>,
 ) -> Result<usize, StepFail> {
     let mut total = 0;
@@ -79,29 +133,18 @@ fn active_set_passes(
             iteration: total,
             residual: f64::NAN,
         })?;
-        // Release test: the vertical multiplier λ = ∂Π/∂y without friction (the same sign as
-        // the normal force at equilibrium, and insensitive to the tangential residual left by
-        // loose passes: testing N there costs more Newton iterations); the normal force N
-        // with friction, where λ = (N + y_s' T)/w can differ in sign from N.
-        let release_force = if model.is_potential() {
-            model.multipliers(st, &f.grad)
-        } else {
-            model.normal_forces(st, &f.grad)
-        };
+        let release_force = release_forces(model, st, &f.grad);
         let gaps = model.gaps(st);
-        let release_scale = release_force
-            .iter()
-            .fold(0.0_f64, |m, l| m.max(l.abs()))
-            .max(MULTIPLIER_SCALE_FLOOR);
+        let scale = release_scale(&release_force);
         let gap_tol = opts.gap_tolerance_over_amplitude * model.indenter.amplitude();
         let mut changed = false;
         for k in 0..st.active.len() {
             if st.active[k] {
-                if release_force[k] < -opts.multiplier_rtol * release_scale {
+                if release_force[k] < -opts.multiplier_rtol * scale && hold.active != Some(k) {
                     st.active[k] = false;
                     changed = true;
                 }
-            } else if gaps[k] < -gap_tol && free_node != Some(k) {
+            } else if gaps[k] < -gap_tol && hold.free != Some(k) {
                 model.activate(st, k);
                 changed = true;
             }

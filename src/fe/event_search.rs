@@ -10,7 +10,7 @@
 //! increment ([`EventSearch::find`]). The other nodes follow the active-set rules. Where
 //! the contact edge lies at an event is the edge rule's ([`super::edge_rule`]).
 
-use super::active_set::{equilibrate, equilibrate_event};
+use super::active_set::{equilibrate, equilibrate_event, Hold};
 use super::assembly::Assembly;
 use super::error::SolveError;
 use super::error::StepFail;
@@ -212,7 +212,8 @@ impl EventSearch<'_> {
     ) -> Result<(State, usize), StepFail> {
         match predictor(model, base, base_prev, increment, tangent) {
             Some(mut st) => {
-                equilibrate(model, asm, &mut st, self.opts, Some(self.node)).map(|it| (st, it))
+                equilibrate(model, asm, &mut st, self.opts, Hold::free(Some(self.node)))
+                    .map(|it| (st, it))
             }
             None => Err(StepFail::Inverted {
                 iteration: 0,

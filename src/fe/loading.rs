@@ -1,6 +1,7 @@
 //! The loading branch: slab-displacement stepping from one contact-edge event to the next
-//! ([`super::event_search`]), from first contact to the target contact width or mean
-//! pressure.
+//! ([`super::event_search`]; for a profile, from one node event to the next:
+//! [`super::node_events`], [`super::release_events`]), from first contact to the target
+//! contact width, contact fraction or mean pressure.
 //!
 //! Predictor: the tangent (Euler) step from the last converged state to the slab
 //! displacement at which the target node closes along that tangent, scaled by the previous
@@ -9,7 +10,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::active_set::equilibrate;
+use super::active_set::{equilibrate, Hold};
 use super::assembly::Assembly;
 use super::error::{CurveFailure, SolveError};
 use super::event_search::{
@@ -20,6 +21,7 @@ use super::model::{Model, State};
 use super::node_events::{activate_touching_anywhere, earliest_touchdown, passed_touchdowns};
 use super::predictor::tangent_at;
 use super::pressure_target::{land_on_pressure, Overshoot, PRESSURE_TARGET_RTOL};
+use super::release_events::first_release;
 use super::step_state::Converged;
 use super::{Curve, CurvePoint, SolveOptions};
 
@@ -68,6 +70,8 @@ pub(crate) struct LoadPath {
     pub(crate) patch_edges: Vec<Vec<[f64; 2]>>,
     /// Internal forces `∂Π/∂x` of `cur`.
     pub(crate) grad: Vec<f64>,
+    /// The contact-face node the last event released, if it was a release.
+    pub(crate) released: Option<usize>,
 }
 
 impl LoadPath {
@@ -82,12 +86,20 @@ impl LoadPath {
             points: Vec::new(),
             patch_edges: Vec::new(),
             grad: vec![0.0; 2 * model.num_nodes()],
+            released: None,
         }
     }
 
     /// Move on to the converged event `st` with its point, forces and patches; `extrapolated` is
-    /// the increment the load tangent predicted for it.
-    pub(crate) fn advance(&mut self, st: State, measured: Measured, extrapolated: Option<f64>) {
+    /// the increment the load tangent predicted for it; `released`, the node it released if it
+    /// is a release event.
+    pub(crate) fn advance(
+        &mut self,
+        st: State,
+        measured: Measured,
+        extrapolated: Option<f64>,
+        released: Option<usize>,
+    ) {
         let Measured {
             point,
             grad,
@@ -102,6 +114,7 @@ impl LoadPath {
             self.event_ratio = (self.last_increment / e).clamp(EVENT_RATIO_MIN, EVENT_RATIO_MAX);
         }
         self.prev = Some(std::mem::replace(&mut self.cur, st));
+        self.released = released;
     }
 
     /// The failure `error` with the points converged so far.
@@ -188,7 +201,7 @@ pub(crate) fn loading_branch(
         // skipped because they touch enter the step active), or the free node that closes
         // first along the load tangent (node events; every touching free node enters active)
         let (mut k, tangent) = if node_events {
-            activate_touching_anywhere(model, &mut path.cur);
+            activate_touching_anywhere(model, &mut path.cur, path.released);
             let tangent = tangent_at(model, asm, opts, &path.cur);
             match earliest_touchdown(model, &path.cur, tangent.as_deref()) {
                 Some(k) => (k, tangent),
@@ -234,19 +247,40 @@ pub(crate) fn loading_branch(
                 _ => break (st, iters, extrapolated),
             }
         };
-        // node k enters contact; equilibrate, commit the slip and measure
-        model.activate(&mut st, k);
-        model.enforce_constraints(&mut st);
-        match equilibrate(model, asm, &mut st, opts, None) {
-            Ok(it) => iters += it,
-            Err(f) => return Err(path.fail(f.into_error(step, st.d))),
-        }
-        model.commit_slip(&mut st);
-        let edge = if node_events {
-            EdgeAt::OutermostPatch(Some(k))
+        // a contact node that the step released let go before node k touched: the release
+        // is the event
+        let release = if node_events {
+            match first_release(model, asm, opts, &path.cur, &st, k) {
+                Ok(r) => r,
+                Err(f) => return Err(path.fail(f.into_error(step, st.d))),
+            }
         } else {
-            EdgeAt::Node(k)
+            None
         };
+        let (edge, released, extrapolated) = match release {
+            Some(r) => {
+                st = r.state;
+                iters += r.iterations;
+                (EdgeAt::OutermostPatch(None), Some(r.node), None)
+            }
+            None => {
+                // node k enters contact; equilibrate
+                model.activate(&mut st, k);
+                model.enforce_constraints(&mut st);
+                match equilibrate(model, asm, &mut st, opts, Hold::NONE) {
+                    Ok(it) => iters += it,
+                    Err(f) => return Err(path.fail(f.into_error(step, st.d))),
+                }
+                let edge = if node_events {
+                    EdgeAt::OutermostPatch(Some(k))
+                } else {
+                    EdgeAt::Node(k)
+                };
+                (edge, None, extrapolated)
+            }
+        };
+        // commit the slip and measure
+        model.commit_slip(&mut st);
         let mut measured = measure(model, asm, &st, estar, edge, opts);
         measured.point.newton_iterations = iters;
         let overshot = opts
@@ -279,7 +313,7 @@ pub(crate) fn loading_branch(
             grad: &measured.grad,
         };
         on_step(&measured.point, at);
-        path.advance(st, measured, extrapolated);
+        path.advance(st, measured, extrapolated, released);
         if overshot.is_some() {
             break; // on the pressure target
         }

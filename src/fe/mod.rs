@@ -25,7 +25,8 @@
 //!   width or (with [`pressure_target`]) to a mean pressure; [`unloading`]: back to zero
 //!   load;
 //! * [`event_search`]: which node touches next and at which slab displacement;
-//!   [`node_events`]: the same for a contact in several patches (profiles);
+//!   [`node_events`]: the same for a contact in several patches (profiles), and
+//!   [`release_events`]: where a contact node lets go;
 //!   [`step_control`]: its regula falsi and the cutting of failed steps;
 //! * [`predictor`]: the load tangent and the predicted state of a step;
 //! * [`active_set`]: Newton passes alternating with contact-set updates;
@@ -76,6 +77,7 @@ pub mod node_events;
 pub mod patches;
 pub mod predictor;
 pub mod pressure_target;
+pub mod release_events;
 pub mod shear_test;
 pub mod step_control;
 pub mod step_state;

@@ -8,8 +8,9 @@
 //! shows another node that touched on the way (free with an open gap before, in contact at the
 //! event: the active-set update caught it penetrating), that node came first and becomes the
 //! target ([`passed_touchdowns`], `super::loading`). A node whose normal force would turn
-//! tensile is released by the active-set update of the step in which it happens
-//! ([`super::active_set`]), so a patch may also shrink or vanish from one event to the next.
+//! tensile in that step is released where its force vanishes, and that release is the event
+//! when it comes first ([`super::release_events`]); a patch may shrink or vanish from one
+//! event to the next.
 //! For a single sinusoid the first free node to touch is the one beyond the edge, and the
 //! events are the edge events of [`super::event_search`].
 
@@ -28,9 +29,11 @@ fn open_nodes(model: &Model, st: &State) -> Vec<(usize, f64)> {
 }
 
 /// Activate every free node that touches (gap at most the open-gap tolerance, left so by the
-/// last event with a vanishing force): it carries load as soon as the load grows.
-pub(crate) fn activate_touching_anywhere(model: &Model, st: &mut State) {
-    activate_touching_among(model, st, 0..st.active.len());
+/// last event with a vanishing force): it carries load as soon as the load grows. Except
+/// `released`, the node the last event released: its force would turn tensile.
+pub(crate) fn activate_touching_anywhere(model: &Model, st: &mut State, released: Option<usize>) {
+    let nodes = (0..st.active.len()).filter(|&i| Some(i) != released);
+    activate_touching_among(model, st, nodes);
 }
 
 /// The first of `candidates` to close: the smallest closing increment along the tangent `z`,

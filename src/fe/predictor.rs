@@ -1,7 +1,7 @@
 //! The start of a load step: the load tangent `∂q/∂d`, the predicted state at a new slab
 //! displacement, and the displacement-controlled step that predicts and equilibrates.
 
-use super::active_set::equilibrate;
+use super::active_set::{equilibrate, Hold};
 use super::assembly::Assembly;
 use super::error::StepFail;
 use super::model::{Model, State};
@@ -79,15 +79,15 @@ pub(crate) fn predictor(
 
 /// A displacement-controlled step from the converged state `from` to the slab displacement
 /// `d` (exactly: `from.d + (d − from.d)` may differ from `d` in the last bit): predicted along
-/// the load tangent of `from`, then equilibrated with its active set, node `free_node` kept
-/// free. Returns the state (slip not committed) and the Newton iterations.
+/// the load tangent of `from`, then equilibrated with its active set, the nodes of `hold` kept
+/// as they are. Returns the state (slip not committed) and the Newton iterations.
 pub(crate) fn displacement_step(
     model: &Model,
     asm: &mut Assembly,
     opts: &SolveOptions,
     from: &State,
     d: f64,
-    free_node: Option<usize>,
+    hold: Hold,
 ) -> Result<(State, usize), StepFail> {
     let tangent = tangent_at(model, asm, opts, from);
     let mut st =
@@ -97,6 +97,6 @@ pub(crate) fn displacement_step(
         })?;
     st.d = d;
     model.enforce_constraints(&mut st);
-    let iters = equilibrate(model, asm, &mut st, opts, free_node)?;
+    let iters = equilibrate(model, asm, &mut st, opts, hold)?;
     Ok((st, iters))
 }

@@ -1,6 +1,7 @@
 //! Landing on a mean-pressure target ([`SolveOptions::until_p_over_estar`]) between the last
 //! converged state and the edge event that overshoots it.
 
+use super::active_set::Hold;
 use super::assembly::Assembly;
 use super::error::StepFail;
 use super::measure::{mean_pressure_over_estar, measure_between_events, Measured};
@@ -72,7 +73,7 @@ pub(crate) fn land_on_pressure(
         let start = &search.below.at;
         // the event's node touches only at the event: below it, it stays free (as in the
         // event search)
-        let (st, it) = match displacement_step(model, asm, opts, start, d, Some(node)) {
+        let (st, it) = match displacement_step(model, asm, opts, start, d, Hold::free(Some(node))) {
             Ok(converged) => converged,
             Err(f) => {
                 next = cuts.cut(start.d, d).ok_or(f)?;

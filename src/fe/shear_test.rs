@@ -15,7 +15,7 @@
 //! checks that. The same model, solver and friction code as the wavy problem are used:
 //! only the indenter (amplitude 0) and the lateral faces ([`Lateral::Free`]) differ.
 
-use super::active_set::equilibrate;
+use super::active_set::{equilibrate, Hold};
 use super::assembly::Assembly;
 use super::contact::Indenter;
 use super::friction::{CoulombOrowan, Interface};
@@ -120,7 +120,7 @@ pub fn press_and_shear(test: &ShearTest) -> Result<Vec<ShearPoint>, SolveError> 
             st.dx = dx;
         }
         model.enforce_constraints(&mut st);
-        equilibrate(&model, &mut asm, &mut st, &opts, None)
+        equilibrate(&model, &mut asm, &mut st, &opts, Hold::NONE)
             .map_err(|f| f.into_error(step, st.d))?;
         model.commit_slip(&mut st);
         if step <= n_press {

@@ -1,6 +1,7 @@
 //! The unloading branch of a loading–unloading cycle: from the loaded state back to zero
 //! load, with the friction history carried through.
 
+use super::active_set::Hold;
 use super::assembly::Assembly;
 use super::error::{CurveFailure, SolveError};
 use super::loading::{loading_branch, LoadPath};
@@ -116,7 +117,7 @@ fn unload(
             return Err(fail(path, points, error));
         }
         // exactly the target, so that a reversible cycle revisits the loading displacements
-        match displacement_step(model, asm, opts, &base, target, None) {
+        match displacement_step(model, asm, opts, &base, target, Hold::NONE) {
             Ok((mut st, iters)) if scheduled => {
                 model.commit_slip(&mut st);
                 let Measured {
