@@ -187,6 +187,19 @@ impl Profile {
         })
     }
 
+    /// The profile of `(order, aspect_ratio)` pairs, the first of order 1, as a spec lists
+    /// them (`profile = [[1, 0.1], [16, 0.05]]`; [`Profile::new`]).
+    pub fn from_pairs(pairs: &[(u32, f64)]) -> Result<Self, ProfileError> {
+        let harmonics: Vec<Harmonic> = pairs
+            .iter()
+            .map(|&(order, aspect_ratio)| Harmonic {
+                order,
+                aspect_ratio,
+            })
+            .collect();
+        Self::new(&harmonics)
+    }
+
     /// Every harmonic, the big wave first.
     pub fn harmonics(&self) -> impl Iterator<Item = Harmonic> + '_ {
         std::iter::once(Harmonic {

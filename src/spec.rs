@@ -12,6 +12,7 @@ use crate::accuracy::measured::{self, ChoiceError, Query, PHYSICS_COLUMNS};
 use crate::defaults;
 use crate::fe::{Kinematics, MeshLevel};
 use crate::models::{CoefficientSet, ModelKind, Reading};
+use crate::profile::Profile;
 use serde::de::{self, DeserializeOwned, Deserializer};
 use serde::Deserialize;
 use std::fmt;
@@ -463,6 +464,63 @@ impl Validator<'_> {
             ));
         }
         Ok(())
+    }
+
+    /// The rigid surface of a single FE case whose section is `fe`: the sinusoid of
+    /// `{prefix}.aspect_ratio` or the cosine harmonics of `{prefix}.profile`
+    /// (`[[1, AR₁], [n, AR₂], …]`, docs/replication.md R13), exactly one of the two. A profile
+    /// is refused with a `tolerance` (the measured errors are of single sinusoids) and where the
+    /// solver cannot take it at the section's mesh (`fe::validate`: unresolved, too steep).
+    pub fn fe_surface(
+        &self,
+        prefix: &str,
+        fe: &FeSection,
+        aspect_ratio: Option<f64>,
+        profile: Option<&[(u32, f64)]>,
+    ) -> Result<Profile, SpecError> {
+        let field = format!("{prefix}.profile");
+        let pairs = match (aspect_ratio, profile) {
+            (Some(ar), None) => return Ok(Profile::sinusoid(ar)),
+            (None, Some(pairs)) => pairs,
+            (a, p) => {
+                let given = match (a, p) {
+                    (Some(_), Some(_)) => "both",
+                    _ => "neither",
+                };
+                return Err(self.invalid(
+                    &format!("{prefix}.aspect_ratio"),
+                    None,
+                    format!("{given} of aspect_ratio and profile"),
+                    "exactly one: aspect_ratio = Δ/λ, or profile = [[1, AR₁], [n, AR₂], …]".into(),
+                ));
+            }
+        };
+        let text = format!("{pairs:?}");
+        let profile = Profile::from_pairs(pairs)
+            .map_err(|e| self.invalid(&field, None, text.clone(), e.to_string()))?;
+        if let Some(t) = fe.tolerance.filter(|_| !profile.is_sinusoid()) {
+            return Err(self.invalid(
+                &format!("{prefix}.fe.tolerance"),
+                None,
+                t.get().to_string(),
+                "absent with a profile (the measured errors are of single sinusoids): set `mesh`"
+                    .into(),
+            ));
+        }
+        let mesh = fe
+            .mesh_for(&[profile.aspect_ratio])
+            .map_err(|e| self.invalid(&field, None, text.clone(), e.to_string()))?;
+        let problem = crate::fe::LayerProblem {
+            finer_harmonics: profile.finer,
+            ..defaults::layer_problem(profile.aspect_ratio)
+        };
+        let options = crate::fe::SolveOptions {
+            mesh,
+            ..Default::default()
+        };
+        crate::fe::validate(&problem, &options)
+            .map_err(|e| self.invalid(&field, None, text, e.to_string()))?;
+        Ok(profile)
     }
 
     pub fn non_empty(&self, field: &str, len: usize) -> Result<(), SpecError> {

@@ -2,13 +2,14 @@
 //! pressure along the contact face: the picture that shows what the solver does at large
 //! aspect ratio (material sliding along the indenter, the valley closing).
 
-use super::fe_cases::{FeCase, FePhysics};
+use super::fe_cases::{surface_label, FeCase, FePhysics};
 use super::scene_output::{Layout, Remarks};
 use super::scenes::{Scene, SceneContext, SceneResult};
 use super::RunOptions;
 use crate::fe;
 use crate::fe::{CurvePoint, DeformedState};
 use crate::plot::{palette, LegendPosition, Panel, Series};
+use crate::profile::Profile;
 use crate::spec::{Bounded, FeSection, Positive, SpecError, Validator};
 use crate::table::Table;
 use anyhow::{anyhow, Result};
@@ -18,8 +19,11 @@ use serde::Deserialize;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DeformedMeshScene {
-    /// Aspect ratio Δ/λ.
-    pub aspect_ratio: Bounded<Positive>,
+    /// Aspect ratio Δ/λ of a sinusoid; or, instead, `profile`.
+    pub aspect_ratio: Option<Bounded<Positive>>,
+    /// A profile of cosine harmonics `[[1, AR₁], [n, AR₂], …]` (docs/replication.md R13),
+    /// instead of `aspect_ratio`.
+    pub profile: Option<Vec<(u32, f64)>>,
     /// The FE model; `tau_max_mpa` must hold exactly one value.
     pub fe: FeSection,
 }
@@ -30,7 +34,13 @@ impl Scene for DeformedMeshScene {
     }
 
     fn validate(&self, v: &Validator) -> Result<(), SpecError> {
-        v.fe_section("deformed_mesh.fe", &self.fe, None, &[self.aspect_ratio.get()])?;
+        let surface = v.fe_surface(
+            "deformed_mesh",
+            &self.fe,
+            self.aspect_ratio.map(|a| a.get()),
+            self.profile.as_deref(),
+        )?;
+        v.fe_section("deformed_mesh.fe", &self.fe, None, &[surface.aspect_ratio])?;
         if self.fe.tau_max_mpa.len() != 1 {
             return Err(v.invalid(
                 "deformed_mesh.fe.tau_max_mpa",
@@ -43,14 +53,26 @@ impl Scene for DeformedMeshScene {
     }
 }
 
+impl DeformedMeshScene {
+    /// The rigid surface: the sinusoid of `aspect_ratio` or the `profile` (validated: exactly
+    /// one of them).
+    fn surface(&self) -> Profile {
+        match (&self.aspect_ratio, &self.profile) {
+            (Some(ar), _) => Profile::sinusoid(ar.get()),
+            (None, Some(pairs)) => Profile::from_pairs(pairs).expect("validated"),
+            (None, None) => unreachable!("validated: aspect_ratio or profile"),
+        }
+    }
+}
+
 fn run(title: &str, s: &DeformedMeshScene, opts: &RunOptions) -> Result<SceneResult> {
-    let ar = s.aspect_ratio.get();
+    let surface = s.surface();
     let tau = s.fe.tau_max_mpa[0].get();
-    let case = FeCase::new(
+    let case = FeCase::for_profile(
         &FePhysics::from(&s.fe),
-        ar,
+        &surface,
         tau,
-        s.fe.options(&[ar], opts.fe_mesh_override),
+        s.fe.options(&[surface.aspect_ratio], opts.fe_mesh_override),
     );
     let curve = fe::solve_curve(&case.problem, &case.options, &mut |_| {})
         .map_err(|f| anyhow!("the FE solve for the deformed mesh stopped: {}", f.error))?;
@@ -72,15 +94,16 @@ fn run(title: &str, s: &DeformedMeshScene, opts: &RunOptions) -> Result<SceneRes
             state.contact_pressure_over_estar[k].into(),
         ]);
     }
-    let panels = vec![mesh_panel(state, ar, &last), pressure_panel(state, &last)];
+    let panels = vec![mesh_panel(state, &surface, &last), pressure_panel(state, &last)];
     let (nx, ny) = case.options.mesh.counts();
     let remarks = Remarks::with_footer(vec![format!(
-        "AR = {ar}, {:?} kinematics, neo-Hookean κ/G = {}, h/λ = {} (mesh {nx}×{ny}; only y/λ ≤ {:.2} shown). \
+        "{}, {:?} kinematics, neo-Hookean κ/G = {}, h/λ = {} (mesh {nx}×{ny}; only y/λ ≤ {:.2} shown). \
          a/λ = {:.4}, p̄/E* = {:.5} (contact forces) / {:.5} (slab reaction).",
+        surface_label(&surface),
         case.problem.kinematics,
         s.fe.kappa_over_g.get(),
         s.fe.thickness_over_lambda.get(),
-        mesh_y_range(ar).1,
+        mesh_y_range(&surface).1,
         last.a_over_lambda,
         last.p_over_estar,
         last.p_over_estar_reaction
@@ -94,14 +117,15 @@ fn run(title: &str, s: &DeformedMeshScene, opts: &RunOptions) -> Result<SceneRes
     Ok(remarks.finish(title, layout, panels, vec![table]))
 }
 
-/// The y/λ range of the mesh panel: from below the indenter's valley, 0.75 high.
-fn mesh_y_range(ar: f64) -> (f64, f64) {
-    let y_lo = -2.0 * ar - 0.02;
+/// The y/λ range of the mesh panel: from below the indenter's deepest point (at most twice the
+/// sum of the amplitudes), 0.75 high.
+fn mesh_y_range(surface: &Profile) -> (f64, f64) {
+    let y_lo = -2.0 * surface.amplitude_sum() - 0.02;
     (y_lo, y_lo + 0.75)
 }
 
 /// The mesh (grey), the indenter (black), the nodes in contact (vermilion).
-fn mesh_panel(state: &DeformedState, ar: f64, last: &CurvePoint) -> Panel {
+fn mesh_panel(state: &DeformedState, surface: &Profile, last: &CurvePoint) -> Panel {
     let mut series: Vec<Series> = state
         .quads
         .iter()
@@ -114,16 +138,15 @@ fn mesh_panel(state: &DeformedState, ar: f64, last: &CurvePoint) -> Panel {
             Series::line(None, palette::GREY, 1, pts)
         })
         .collect();
-    let indenter = fe::contact::Indenter::sinusoid(ar);
-    let surface: Vec<(f64, f64)> = (0..=200)
+    let indenter: Vec<(f64, f64)> = (0..=200)
         .map(|i| 0.5 * i as f64 / 200.0)
-        .map(|x| (x, indenter.y(x)))
+        .map(|x| (x, surface.y(x)))
         .collect();
     series.push(Series::line(
         Some("rigid indenter".into()),
         palette::BLACK,
         3,
-        surface,
+        indenter,
     ));
     let in_contact: Vec<(f64, f64)> = state
         .bottom
@@ -143,7 +166,7 @@ fn mesh_panel(state: &DeformedState, ar: f64, last: &CurvePoint) -> Panel {
         x_label: "x/λ".into(),
         y_label: "y/λ".into(),
         x_range: (0.0, 0.5),
-        y_range: mesh_y_range(ar),
+        y_range: mesh_y_range(surface),
         series,
         notes: vec![],
         log_scale: (false, false),

@@ -92,6 +92,16 @@ pub fn compute_share(cases: &[FeCase], opts: &RunOptions) -> Result<(usize, usiz
     Ok((r.computed, r.from_cache))
 }
 
+/// How a figure names the rigid surface of a case: `AR = 0.3` for a sinusoid, `profile
+/// 1:0.1,8:0.05` for a profile.
+pub fn surface_label(profile: &crate::profile::Profile) -> String {
+    if profile.is_sinusoid() {
+        format!("AR = {}", profile.aspect_ratio)
+    } else {
+        format!("profile {profile}")
+    }
+}
+
 /// Fingerprint of the solver's source (build.rs): a changed solver never reads old results.
 pub const FE_SOURCE_SHA256: &str = env!("WAVY_FE_SOURCE_SHA256");
 
@@ -188,6 +198,19 @@ pub struct FeCase {
 }
 
 impl FeCase {
+    /// The case of the rigid `profile` at shear strength τ_max (MPa) ([`FeCase::new`] with the
+    /// profile's finer harmonics).
+    pub fn for_profile(
+        physics: &FePhysics,
+        profile: &crate::profile::Profile,
+        tau_max_mpa: f64,
+        options: SolveOptions,
+    ) -> Self {
+        let mut case = Self::new(physics, profile.aspect_ratio, tau_max_mpa, options);
+        case.problem.finer_harmonics = profile.finer;
+        case
+    }
+
     /// The case at aspect ratio Δ/λ and shear strength τ_max (MPa): the one place where a
     /// layer problem is built from physical parameters.
     pub fn new(

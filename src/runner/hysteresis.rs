@@ -8,13 +8,14 @@
 //! frictionless loop closes, `|W| ≤ CLOSURE_RTOL · W_load`, and no loop creates energy,
 //! `W ≥ −CLOSURE_RTOL · W_load` (`W_load = ∫ p̄ dδ` along loading).
 
-use super::fe_cases::{self, FeCase, FeOutcome, FePhysics, SolvedCases};
+use super::fe_cases::{self, surface_label, FeCase, FeOutcome, FePhysics, SolvedCases};
 use super::scene_output::{Layout, Remarks};
 use super::scenes::{Scene, SceneContext, SceneResult};
 use super::RunOptions;
 use crate::accuracy::richardson;
 use crate::fe::{cycle_work_over_estar_lambda2, CurvePoint, Interface, LoadDirection};
 use crate::plot::{padded_range, palette, LegendPosition, Panel, Series};
+use crate::profile::Profile;
 use plotters::style::RGBColor;
 use crate::spec::{Bounded, FeSection, NonNegative, Positive, SpecError, Validator};
 use crate::table::{Cell, Table};
@@ -48,8 +49,11 @@ pub struct HysteresisScene {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Confinement {
-    /// Aspect ratio Δ/λ.
-    pub aspect_ratio: Bounded<Positive>,
+    /// Aspect ratio Δ/λ of a sinusoid; or, instead, `profile`.
+    pub aspect_ratio: Option<Bounded<Positive>>,
+    /// A profile of cosine harmonics `[[1, AR₁], [n, AR₂], …]` (docs/replication.md R13),
+    /// instead of `aspect_ratio`.
+    pub profile: Option<Vec<(u32, f64)>>,
     /// Shear strength, MPa (at the FE section's `estar_mpa`).
     pub tau_max_mpa: Bounded<NonNegative>,
     /// Layer thicknesses h/λ.
@@ -57,6 +61,18 @@ pub struct Confinement {
     /// Load until p̄/E* is this (`fe::SolveOptions::until_p_over_estar`); the FE section's
     /// `until_a_over_lambda` caps a/λ on the way.
     pub until_p_over_estar: Bounded<Positive>,
+}
+
+impl Confinement {
+    /// The rigid surface: the sinusoid of `aspect_ratio` or the `profile` (validated: exactly
+    /// one of them).
+    fn surface(&self) -> Profile {
+        match (&self.aspect_ratio, &self.profile) {
+            (Some(ar), _) => Profile::sinusoid(ar.get()),
+            (None, Some(pairs)) => Profile::from_pairs(pairs).expect("validated"),
+            (None, None) => unreachable!("validated: aspect_ratio or profile"),
+        }
+    }
 }
 
 /// The two series of loops of the scene.
@@ -95,15 +111,15 @@ impl HysteresisScene {
             })
             .collect();
         if let Some(c) = &self.confinement {
-            let ar = c.aspect_ratio.get();
-            let mut options = self.fe.options(&[ar], opts.fe_mesh_override);
+            let surface = c.surface();
+            let mut options = self.fe.options(&[surface.aspect_ratio], opts.fe_mesh_override);
             options.until_p_over_estar = Some(c.until_p_over_estar.get());
             for h in &c.thickness_over_lambda {
                 let physics = FePhysics {
                     thickness_over_lambda: h.get(),
                     ..FePhysics::from(&self.fe)
                 };
-                let case = FeCase::new(&physics, ar, c.tau_max_mpa.get(), options);
+                let case = FeCase::for_profile(&physics, &surface, c.tau_max_mpa.get(), options);
                 loops.push(Loop {
                     case: case.with_unloading(),
                     series: LoopSeries::Confinement,
@@ -130,6 +146,12 @@ impl Scene for HysteresisScene {
         let ars: Vec<f64> = self.aspect_ratios.iter().map(|a| a.get()).collect();
         v.fe_section("hysteresis.fe", &self.fe, None, &ars)?;
         if let Some(c) = &self.confinement {
+            v.fe_surface(
+                "hysteresis.confinement",
+                &self.fe,
+                c.aspect_ratio.map(|a| a.get()),
+                c.profile.as_deref(),
+            )?;
             v.non_empty(
                 "hysteresis.confinement.thickness_over_lambda",
                 c.thickness_over_lambda.len(),
@@ -165,8 +187,12 @@ fn run(title: &str, s: &HysteresisScene, opts: &RunOptions) -> Result<SceneResul
     for l in &loops {
         let c = &l.case;
         let o = solved.outcome(c).expect("every loop was solved");
-        let (ar, h) = (c.problem.aspect_ratio, c.problem.thickness_over_lambda);
-        let label = format!("AR = {ar}, τ_max/E* = {}, h/λ = {h}", c.tau_max_mpa / estar);
+        let h = c.problem.thickness_over_lambda;
+        let label = format!(
+            "{}, τ_max/E* = {}, h/λ = {h}",
+            surface_label(&c.problem.profile()),
+            c.tau_max_mpa / estar
+        );
         tables.push_points(l, o, estar);
         let d = match &o.failure {
             Some(f) => {
@@ -256,6 +282,7 @@ impl Tables {
         let mut dissipation_header = vec![
             "series",
             "aspect_ratio",
+            "profile",
             "tau_max_over_estar",
             "thickness_over_lambda",
             "peak_a_over_lambda",
@@ -290,6 +317,7 @@ impl Tables {
                 self.points.push(vec![
                     l.series.name().into(),
                     c.problem.aspect_ratio.into(),
+                    c.problem.profile().to_string().into(),
                     (c.tau_max_mpa / estar_mpa).into(),
                     c.problem.thickness_over_lambda.into(),
                     branch.name().into(),
@@ -314,6 +342,7 @@ impl Tables {
         let mut row: Vec<Cell> = vec![
             l.series.name().into(),
             c.problem.aspect_ratio.into(),
+            c.problem.profile().to_string().into(),
             (c.tau_max_mpa / estar_mpa).into(),
             c.problem.thickness_over_lambda.into(),
             peak.map(|p| p.a_over_lambda).into(),
@@ -346,9 +375,10 @@ impl Tables {
     }
 }
 
-const POINTS_HEADER: [&str; 8] = [
+const POINTS_HEADER: [&str; 9] = [
     "series",
     "aspect_ratio",
+    "profile",
     "tau_max_over_estar",
     "thickness_over_lambda",
     "branch",
@@ -517,8 +547,8 @@ fn confinement_panel(c: &Confinement, estar_mpa: f64, results: &[SolvedLoop]) ->
     }
     loop_panel(
         format!(
-            "Confinement: AR = {}, τ_max/E* = {}, to p̄/E* = {}",
-            c.aspect_ratio.get(),
+            "Confinement: {}, τ_max/E* = {}, to p̄/E* = {}",
+            surface_label(&c.surface()),
             c.tau_max_mpa.get() / estar_mpa,
             c.until_p_over_estar.get()
         ),

@@ -17,7 +17,7 @@ use crate::models::superposition::{superposed_contact, SuperpositionError};
 use crate::models::{a_over_lambda_at, InverseError, CoefficientSet, ModelKind, ModelLaw, Reading};
 use crate::numfmt::sig_digits;
 use crate::plot::{padded_range, LegendPosition, Panel, Series};
-use crate::profile::{Harmonic, Profile};
+use crate::profile::Profile;
 use crate::spec::{Bounded, NonNegative, SpecError, Validator};
 use crate::table::{Cell, Table};
 use anyhow::Result;
@@ -104,14 +104,7 @@ const FE_COLORS: [RGBColor; 3] = [
 
 impl TwoScaleScene {
     fn profile(&self, i: usize) -> Profile {
-        let h: Vec<Harmonic> = self.profiles[i]
-            .iter()
-            .map(|&(order, aspect_ratio)| Harmonic {
-                order,
-                aspect_ratio,
-            })
-            .collect();
-        Profile::new(&h).expect("validated")
+        Profile::from_pairs(&self.profiles[i]).expect("validated")
     }
 
     fn options(&self) -> SolveOptions {
@@ -132,10 +125,7 @@ impl TwoScaleScene {
         for tau in self.tau_max_mpa.iter().map(|t| t.get()) {
             for i in 0..self.profiles.len() {
                 let profile = self.profile(i);
-                let mut case =
-                    FeCase::new(&FePhysics::default(), profile.aspect_ratio, tau, self.options());
-                case.problem.finer_harmonics = profile.finer;
-                cases.push(case);
+                cases.push(FeCase::for_profile(&FePhysics::default(), &profile, tau, self.options()));
             }
         }
         cases
@@ -206,14 +196,10 @@ impl Scene for TwoScaleScene {
         v.non_empty("two_scale.tau_max_mpa", self.tau_max_mpa.len())?;
         let field = "two_scale.profiles";
         for p in &self.profiles {
-            let h: Vec<Harmonic> = p
-                .iter()
-                .map(|&(order, aspect_ratio)| Harmonic { order, aspect_ratio })
-                .collect();
             let text = format!("{p:?}");
-            let profile = Profile::new(&h)
+            let profile = Profile::from_pairs(p)
                 .map_err(|e| v.invalid(field, None, text.clone(), e.to_string()))?;
-            if h.len() != 2 {
+            if p.len() != 2 {
                 return Err(v.invalid(field, None, text, "two harmonics: [[1, AR₁], [n, AR₂]]".into()));
             }
             let problem = crate::fe::LayerProblem {
