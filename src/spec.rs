@@ -535,6 +535,19 @@ impl Validator<'_> {
     }
 }
 
+/// The rigid surface of a validated single FE case ([`Validator::fe_surface`]): the sinusoid
+/// of `aspect_ratio` or the `profile`.
+///
+/// # Panics
+/// When neither is given or the profile is malformed: validation refuses such a spec.
+pub fn validated_surface(aspect_ratio: Option<f64>, profile: Option<&[(u32, f64)]>) -> Profile {
+    match (aspect_ratio, profile) {
+        (Some(ar), _) => Profile::sinusoid(ar),
+        (None, Some(pairs)) => Profile::from_pairs(pairs).expect("validated"),
+        (None, None) => unreachable!("validated: aspect_ratio or profile"),
+    }
+}
+
 /// Longest line of a quoted spec excerpt in an error message, in characters.
 const EXCERPT_LINE_CHARS: usize = 160;
 /// Most lines of an error message.

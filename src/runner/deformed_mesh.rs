@@ -57,11 +57,7 @@ impl DeformedMeshScene {
     /// The rigid surface: the sinusoid of `aspect_ratio` or the `profile` (validated: exactly
     /// one of them).
     fn surface(&self) -> Profile {
-        match (&self.aspect_ratio, &self.profile) {
-            (Some(ar), _) => Profile::sinusoid(ar.get()),
-            (None, Some(pairs)) => Profile::from_pairs(pairs).expect("validated"),
-            (None, None) => unreachable!("validated: aspect_ratio or profile"),
-        }
+        crate::spec::validated_surface(self.aspect_ratio.map(|a| a.get()), self.profile.as_deref())
     }
 }
 
