@@ -183,12 +183,8 @@ fn run(title: &str, s: &HysteresisScene, opts: &RunOptions) -> Result<SceneResul
     for l in &loops {
         let c = &l.case;
         let o = solved.outcome(c).expect("every loop was solved");
-        let h = c.problem.thickness_over_lambda;
-        let label = format!(
-            "{}, τ_max/E* = {}, h/λ = {h}",
-            surface_label(&c.problem.profile()),
-            c.tau_max_mpa / estar
-        );
+        let (surface, h) = (surface_label(&c.problem.profile()), c.problem.thickness_over_lambda);
+        let label = format!("{surface}, τ_max/E* = {}, h/λ = {h}", c.tau_max_mpa / estar);
         tables.push_points(l, o, estar);
         let d = match &o.failure {
             Some(f) => {
