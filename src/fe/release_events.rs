@@ -167,12 +167,19 @@ mod tests {
     use super::*;
     use crate::fe::assembly::Assembly;
     use crate::fe::loading::loading_branch;
-    use crate::fe::{build_model, estar_over_g, MeshLevel};
+    use crate::fe::{build_model, estar_over_g, Interface, Kinematics, LayerProblem, MeshLevel};
 
     /// The converged states of the frictionless AR 0.1 sinusoid on the coarse mesh, edge event
     /// by edge event up to a/λ = 0.3, with the model and its assembly.
     fn loaded() -> (Model, Assembly, SolveOptions, Vec<State>) {
-        let problem = crate::defaults::layer_problem(0.1);
+        let problem = LayerProblem {
+            aspect_ratio: 0.1,
+            finer_harmonics: crate::profile::FinerHarmonics::NONE,
+            thickness_over_lambda: 1.0,
+            kappa_over_g: 1000.0,
+            kinematics: Kinematics::Finite,
+            interface: Interface::Frictionless,
+        };
         let opts = SolveOptions {
             mesh: MeshLevel::Coarse,
             until_a_over_lambda: 0.3,
