@@ -227,10 +227,7 @@ fn two_scale_curves_converge_under_refinement() {
                 &pb,
                 &SolveOptions {
                     mesh: MeshLevel::along_face(n),
-                    grading: Grading {
-                        peak_ratio: 1.0,
-                        ..Grading::default()
-                    },
+                    grading: Grading::uniform_face(),
                     until_contact_fraction: Some(0.85),
                     ..Default::default()
                 },

@@ -22,10 +22,7 @@ fn linear_two_scale_fe_matches_the_boundary_element_solution() {
     for mesh in [48, 72] {
         let opts = SolveOptions {
             mesh: MeshLevel::along_face(mesh),
-            grading: Grading {
-                peak_ratio: 1.0,
-                ..Grading::default()
-            },
+            grading: Grading::uniform_face(),
             until_contact_fraction: Some(0.8),
             ..Default::default()
         };

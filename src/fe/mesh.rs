@@ -110,6 +110,17 @@ pub struct Grading {
     pub first_layer_over_dx: f64,
 }
 
+impl Grading {
+    /// Uniform spacing along the contact face (`peak_ratio` 1), the default layers: the mesh of
+    /// a profile whose small waves touch anywhere on the face.
+    pub fn uniform_face() -> Self {
+        Self {
+            peak_ratio: 1.0,
+            ..Self::default()
+        }
+    }
+}
+
 impl Default for Grading {
     fn default() -> Self {
         Self {

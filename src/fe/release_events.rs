@@ -144,8 +144,8 @@ pub(crate) fn first_release(
 ) -> Result<Option<Release>, StepFail> {
     let mut first: Option<Release> = None;
     let mut iterations = 0;
+    let hold = Hold::free(Some(target));
     for j in released_nodes(from, found) {
-        let hold = Hold::free(Some(target));
         if let Some(r) = locate_release(model, asm, opts, from, j, found.d, hold)? {
             iterations += r.iterations;
             if first.as_ref().is_none_or(|f| r.state.d < f.state.d) {
