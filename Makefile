@@ -4,7 +4,7 @@
 CARGO ?= cargo
 export CARGO_TERM_COLOR ?= never
 
-.PHONY: all reproduce test python-test lint check bless stale bench bench-solver bench-tiers fuzz clean
+.PHONY: all reproduce test python-test lint check bless stale bench bench-solver bench-tiers reference fuzz clean
 
 all: reproduce
 
@@ -84,6 +84,14 @@ bench-solver:
 bench-tiers:
 	$(CARGO) build --release --locked
 	$(CARGO) run --release --locked --quiet -- time-tiers
+
+## The converged reference of experiments/speed_accuracy.toml: every case on its reference_meshes (up to
+## 192 elements along the face, on all cores), the limit p0 + c1/n + c2/n^2 per a/λ, written to
+## experiments/data/speed_accuracy_reference.csv (docs/replication.md R11; duration: docs/performance.md).
+## Rerun it, then `make bless`, when a physics default changes: the scene refuses a file of other physics.
+reference:
+	$(CARGO) build --release --locked
+	$(CARGO) run --release --locked --quiet -- refine-reference
 
 ## The property and fuzz suites with 10⁶ cases each (make test runs 10⁴); WAVY_FUZZ_SEED picks another seed.
 fuzz:

@@ -1,7 +1,8 @@
 //! Mesh-convergence study (development tool): `cargo run --release --example fe_study`
 //! with environment variables AR, LEVELS (nx list, e.g. "32,64,128"), NY_OVER_NX,
 //! PEAK (grading peak_ratio), FIRST (first_layer_over_dx), RULE (fraction|power|periodic), KIN (finite|linear),
-//! DUMP (print the curves), PRED (tangent|extrap), PHI_CALIB (calibrate `DISCRETE_EDGE_FRACTION` instead).
+//! DUMP (print the curves), PRED (tangent|extrap), PHI_CALIB (calibrate `DISCRETE_EDGE_FRACTION` instead),
+//! ASPECT_CALIB (calibrate `EDGE_FRACTION_BY_ASPECT` instead).
 use std::time::Instant;
 use wavy::fe::*;
 
@@ -50,6 +51,81 @@ fn calibrate(levels: &[usize], ny_over_nx: f64, opts: &SolveOptions) {
     }
 }
 
+/// Calibration of `EDGE_FRACTION_BY_ASPECT`: as [`calibrate`], on the 64 × 32 mesh with the
+/// gradings (peak ratio, first layer) ∈ {4, 16} × {0.25, 0.5, 1} and (2, 2), each event with
+/// a/λ ∈ [0.05, 0.30] and element aspect r ≤ 1.7 giving a pair (r, φ), then the least-squares
+/// quadratic φ(r). The rule changes only the reported a, so three runs give, event by event, the
+/// ends of the last loaded element (fractions 0 and 1) and r (the fraction r/2).
+fn calibrate_aspect() {
+    let ar = 0.01;
+    let pb = LayerProblem {
+        kinematics: Kinematics::Linear,
+        ..wavy::defaults::layer_problem(ar)
+    };
+    let gradings = [
+        (4.0, 0.25),
+        (4.0, 0.5),
+        (4.0, 1.0),
+        (16.0, 0.25),
+        (16.0, 0.5),
+        (16.0, 1.0),
+        (2.0, 2.0),
+    ];
+    let mut pairs = Vec::new();
+    for (peak_ratio, first_layer_over_dx) in gradings {
+        let run = |edge_rule| {
+            let o = SolveOptions {
+                mesh: MeshLevel::Elements { nx: 64, ny: 32 },
+                grading: Grading {
+                    peak_ratio,
+                    first_layer_over_dx,
+                },
+                until_a_over_lambda: 0.47,
+                edge_rule,
+                ..SolveOptions::default()
+            };
+            solve_curve(&pb, &o, &mut |_| {})
+                .expect("linear curve")
+                .points
+        };
+        let lo = run(EdgeRule::Fraction(0.0));
+        let hi = run(EdgeRule::Fraction(1.0));
+        let half_r = run(EdgeRule::AspectFraction([0.0, 0.5, 0.0]));
+        for ((l, h), m) in lo.iter().zip(&hi).zip(&half_r) {
+            assert_eq!(
+                l.p_over_estar, m.p_over_estar,
+                "the rule moved the solution"
+            );
+            let width = h.a_over_lambda - l.a_over_lambda;
+            let s2 = l.p_over_estar / (std::f64::consts::PI * ar);
+            if width <= 0.0 || s2 >= 1.0 {
+                continue;
+            }
+            let a = s2.sqrt().asin() / std::f64::consts::PI;
+            let r = 2.0 * (m.a_over_lambda - l.a_over_lambda) / width;
+            if (0.05..=0.30).contains(&a) && r <= 1.7 {
+                pairs.push((r, (a - l.a_over_lambda) / width));
+            }
+        }
+    }
+    let (r, phi): (Vec<f64>, Vec<f64>) = pairs.iter().cloned().unzip();
+    let c = wavy::accuracy::extrapolation::polynomial_least_squares(&r, &phi, 2)
+        .expect("enough events for a quadratic");
+    let resid: Vec<f64> = pairs
+        .iter()
+        .map(|&(r, phi)| phi - (c[0] + c[1] * r + c[2] * r * r))
+        .collect();
+    println!(
+        "phi(r) = {:.4} + {:.4} r + {:.4} r^2 from {} events; residuals {:.4} .. {:.4}",
+        c[0],
+        c[1],
+        c[2],
+        pairs.len(),
+        resid.iter().cloned().fold(f64::INFINITY, f64::min),
+        resid.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+    );
+}
+
 fn main() {
     let ar: f64 = env("AR", "0.1").parse().unwrap();
     let levels: Vec<usize> = env("LEVELS", "32,48,72")
@@ -70,6 +146,10 @@ fn main() {
         _ => EdgeRule::default(),
     };
     opts.tangent_predictor = env("PRED", "tangent") == "tangent";
+    if std::env::var_os("ASPECT_CALIB").is_some() {
+        calibrate_aspect();
+        return;
+    }
     if std::env::var_os("PHI_CALIB").is_some() {
         calibrate(&levels, ny_over_nx, &opts);
         return;

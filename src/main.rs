@@ -74,6 +74,9 @@ enum Command {
     /// Measure the wall time of every tier of a speed_accuracy spec (one thread, median of
     /// runs) and write the timings file its figure reads (make bench-tiers).
     TimeTiers(cli::timing::TimeTiersArgs),
+    /// Solve every case of a speed_accuracy spec on its reference meshes and write the limit of
+    /// those curves that its figure measures the tiers against (make reference).
+    RefineReference(cli::reference::RefineReferenceArgs),
 }
 
 fn main() -> ExitCode {
@@ -126,5 +129,8 @@ fn run(cli: Cli, out: &mut Stdout) -> anyhow::Result<ExitCode> {
         Command::Eval(args) => cli::eval::eval(&args, out).map(|()| ExitCode::SUCCESS),
         Command::Diff(args) => cli::diff::diff(&args, out),
         Command::TimeTiers(args) => cli::timing::time_tiers(&args, out).map(|()| ExitCode::SUCCESS),
+        Command::RefineReference(args) => {
+            cli::reference::refine_reference(&args, out).map(|()| ExitCode::SUCCESS)
+        }
     }
 }

@@ -31,14 +31,16 @@ fn max_error(kappa_over_g: f64) -> (f64, usize) {
 }
 
 /// Requirement (i) asks for a max relative error ≤ 1 % on a/λ ∈ [0.1, 0.45], default mesh.
-/// Measured: 0.198 %; asserted ≤ 0.5 %, about two and a half times that.
+/// Measured: 0.048 %; asserted ≤ 0.15 %, about three times that. The edge rule is calibrated on
+/// this problem (AR 0.01, linear; other meshes and gradings too), so this checks the calibration
+/// on the default mesh rather than the solver independently.
 #[test]
-fn linear_matches_westergaard_within_half_a_percent() {
+fn linear_matches_westergaard_within_0_15_percent() {
     let (worst, count) = max_error(1000.0);
     eprintln!(
         "linear, AR 0.01, default mesh: max relative error vs Westergaard {:.3} % over {count} points",
         100.0 * worst
     );
     assert!(count >= 20, "only {count} points in range");
-    assert!(worst <= 0.005, "max relative error {worst}");
+    assert!(worst <= 0.0015, "max relative error {worst}");
 }

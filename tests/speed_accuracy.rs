@@ -56,12 +56,13 @@ fn test_size_measurement_orders_the_tiers_and_pins_the_errors() {
     let j = reference
         .header
         .iter()
-        .position(|h| h == "reference_error_estimate")
+        .position(|h| h == "reference_uncertainty")
         .unwrap();
     let reference_error: f64 = reference.rows[0][j].to_string().parse().unwrap();
     // refinement reduces the error, the reference is better than every tier, and the linear
     // frictionless closed form is the least accurate at AR 0.1 (4.49 % against the full
-    // 96/144 reference, expected/speed_accuracy.csv; the test-size reference gives 4.49 % too)
+    // reference of meshes 64–192, expected/speed_accuracy.csv; the test-size reference of meshes
+    // 24–72 gives 4.49 % too)
     let (e16, e24, ew) = (
         error_of("fe-finite-16"),
         error_of("fe-finite-24"),
@@ -80,6 +81,56 @@ fn test_size_measurement_orders_the_tiers_and_pins_the_errors() {
     }
     insta::assert_snapshot!("errors", pinned.to_csv());
     insta::assert_snapshot!("reference", reference.to_csv());
+}
+
+/// The test-size reference file is what `wavy refine-reference` computes from its spec, byte for
+/// byte; a spec whose `reference_meshes` differ from the file's is refused before any solve.
+#[test]
+fn refine_reference_writes_the_committed_test_size_reference() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("reference.csv");
+    let cache = dir.path().join("cache");
+    let spec = "tests/specs/speed_accuracy_small.toml";
+    let o = wavy(&[
+        "refine-reference",
+        spec,
+        "--out",
+        out.to_str().unwrap(),
+        "--cache",
+        cache.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let committed =
+        std::fs::read_to_string(root().join("tests/specs/data/speed_accuracy_small_reference.csv"))
+            .unwrap();
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), committed);
+
+    // the same spec elsewhere, its data files named by absolute path, asking for other meshes
+    let specs = root().join("tests/specs");
+    let text = std::fs::read_to_string(root().join(spec))
+        .unwrap()
+        .replace(
+            "reference_meshes = [24, 36, 48, 72]",
+            "reference_meshes = [24, 36, 48]",
+        )
+        .replace("\"data/", &format!("\"{}/data/", specs.display()))
+        .replace("\"../../", &format!("\"{}/../../", specs.display()));
+    let spec = dir.path().join("other_meshes.toml");
+    std::fs::write(&spec, text).unwrap();
+    let o = wavy(&[
+        "run",
+        spec.to_str().unwrap(),
+        "--out",
+        dir.path().to_str().unwrap(),
+        "--cache",
+        cache.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("limit of meshes [24, 36, 48, 72], the spec asks for [24, 36, 48]"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 #[test]
@@ -246,7 +297,7 @@ fn solve_tolerance_picks_a_mesh_and_error_estimate_adds_a_column() {
         .filter_map(|l| l.rsplit(',').next().unwrap().parse().ok())
         .collect();
     assert!(estimates.len() > 10, "{text}");
-    // a 24-element mesh errs by 2.0 % at AR 0.1 (expected/speed_accuracy.csv, fe-finite-24): every
+    // a 24-element mesh errs by 0.22 % at AR 0.1 (expected/speed_accuracy.csv, fe-finite-24): every
     // estimate is positive and below 10 %
     assert!(
         estimates.iter().all(|e| (0.0..0.1).contains(e)),

@@ -1,13 +1,13 @@
 //! Accuracy tiers: every way wavy answers p̄/E*(a/λ), from Westergaard's closed form to the
 //! finite-strain FE on a fine mesh, and how their errors are measured.
 //!
-//! The errors are relative to a converged reference: the Richardson extrapolation of the two
-//! finest finite-strain meshes, `R = f_f + (f_f − f_c) / (ρ^q − 1)` with `ρ` the ratio of their
-//! element counts and `q` the order observed on three meshes refined by that ratio
-//! (docs/replication.md R11). The `speed_accuracy` scene measures every tier this way;
+//! The errors are relative to a converged reference: the limit of the finite-strain curves on
+//! fine meshes, `p(n) = p₀ + c₁/n + c₂/n²` fitted through them ([`extrapolation`];
+//! docs/replication.md R11). The `speed_accuracy` scene measures every tier this way;
 //! [`measured`] holds the committed measurements and picks the cheapest tier that meets a
 //! tolerance.
 
+pub mod extrapolation;
 pub mod measured;
 
 use crate::fe::convergence::p_at;

@@ -6,6 +6,7 @@ pub mod diff;
 pub mod eval;
 pub mod input;
 pub mod output;
+pub mod reference;
 pub mod solve;
 pub mod specs;
 pub mod timing;

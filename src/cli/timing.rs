@@ -4,7 +4,9 @@
 use super::input::InputError;
 use anyhow::{Context, Result};
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use wavy::runner::speed_accuracy::SpeedAccuracyScene;
+use wavy::runner::Spec;
 use wavy::runner::{load_spec, write_atomic};
 
 /// Arguments of `wavy time-tiers`.
@@ -19,6 +21,20 @@ pub struct TimeTiersArgs {
     /// The timings file to write (replaced atomically when every tier is timed).
     #[arg(long, default_value = "experiments/data/speed_accuracy_timings.csv")]
     pub out: PathBuf,
+}
+
+/// The `[speed_accuracy]` section of the spec read from `path`, or an input error naming it.
+pub(super) fn speed_accuracy_scene<'a>(
+    spec: &'a Spec,
+    path: &Path,
+) -> Result<&'a SpeedAccuracyScene, InputError> {
+    spec.speed_accuracy
+        .as_ref()
+        .ok_or_else(|| InputError::Refused {
+            flag: "SPEC".into(),
+            value: path.display().to_string(),
+            reason: "not a [speed_accuracy] spec".into(),
+        })
 }
 
 /// The processor's name, for the provenance of the timings.
@@ -41,14 +57,7 @@ pub fn time_tiers(args: &TimeTiersArgs, out: &mut impl Write) -> Result<()> {
         return Err(super::input::out_of_range("--runs", 0, ">= 1").into());
     }
     let spec = load_spec(&args.spec)?;
-    let scene = spec
-        .speed_accuracy
-        .as_ref()
-        .ok_or_else(|| InputError::Refused {
-            flag: "SPEC".into(),
-            value: args.spec.display().to_string(),
-            reason: "not a [speed_accuracy] spec".into(),
-        })?;
+    let scene = speed_accuracy_scene(&spec, &args.spec)?;
     let timings = wavy::runner::time_tiers::measure(scene, args.runs, &machine(), &mut |line| {
         eprintln!("{line}")
     })?;

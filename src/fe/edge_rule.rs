@@ -3,9 +3,10 @@
 //! At an edge event on node `k` the discrete solution has zero gap up to `x_k`, but its
 //! nodal forces are the work-equivalent integrals `∫ p N_i dx`, so zero force on node `k`
 //! means the pressure vanishes beyond `x_{k−1}`: the edge lies in `[x_{k−1}, x_k]` (current
-//! positions). The default rule ([`EdgeRule`], [`edge_position`]) puts it at the fixed
-//! fraction [`DISCRETE_EDGE_FRACTION`] of that interval, calibrated on Westergaard's
-//! solution. The alternatives, gap fits through the next free nodes
+//! positions). The default rule ([`EdgeRule`], [`edge_position`]) puts it at a fraction of
+//! that interval that depends on the shape of the element ([`EDGE_FRACTION_BY_ASPECT`]),
+//! calibrated on Westergaard's solution. The alternatives, a fixed fraction
+//! ([`EdgeRule::Fraction`]) and gap fits through the next free nodes
 //! ([`EdgeRule::GapPower`], [`EdgeRule::PeriodicGap`]), and how each converges, are
 //! compared in docs/replication.md R7. Between
 //! events (unloading, a pressure target) the edge node is the one after the last loaded
@@ -26,8 +27,16 @@ pub enum EdgeRule {
     /// uniform), so the edge of the continuum solution sits at a mesh-independent
     /// fraction `φ` of the last loaded element; any rule that uses nodal values at a
     /// distance `O(h)` from the edge errs by `O(h)` unless it reproduces that fraction.
-    /// Default [`DISCRETE_EDGE_FRACTION`].
+    /// [`DISCRETE_EDGE_FRACTION`] is its calibration on the default mesh.
     Fraction(f64),
+    /// `a = x_{k−1} + φ(r) (x_k − x_{k−1})` with `φ(r) = c₀ + c₁ r + c₂ r²` (clamped to
+    /// `[0, 1]`), `r` the current height over width of the last loaded element: the mean
+    /// height of its two vertical edges at the face over `x_k − x_{k−1}`. The self-similar
+    /// edge solution of [`EdgeRule::Fraction`] lives at the scale of the element, so its
+    /// fraction depends on the element's shape, which the grading and the stretch of the
+    /// surface vary along the face (from r ≈ 1.5 under the peak to r ≈ 0.3 near the valley
+    /// at AR 0.3). The default, with [`EDGE_FRACTION_BY_ASPECT`].
+    AspectFraction([f64; 3]),
     /// Fit of the periodic Westergaard gap shape `g ∝ G(x; a)` through the vertical gaps
     /// of nodes `k + 1`, `k + 2` (exact in the linear limit, `(x − a)^{3/2}` near the
     /// edge). At finite strain the gap is not of that shape, and the rule errs where the
@@ -43,12 +52,52 @@ pub enum EdgeRule {
 /// `p̄/E* = π (Δ/λ) sin²(π a/λ)` gives for the computed `p̄`, as a fraction of
 /// `[x_{k−1}, x_k]`, on three meshes (`PHI_CALIB=1 cargo run --release --example
 /// fe_study`; the calibration and its check at finite strain are in docs/replication.md
-/// R7).
+/// R7). The fraction the gap-fit rules use for the edges their fits do not cover.
 pub const DISCRETE_EDGE_FRACTION: f64 = 0.64;
+
+/// The coefficients `[c₀, c₁, c₂]` of [`EdgeRule::AspectFraction`]'s `φ(r)`, calibrated on the
+/// exact solution as [`DISCRETE_EDGE_FRACTION`] is (linear kinematics, AR = 0.01, the `a` that
+/// Westergaard gives for the computed `p̄`): a least-squares quadratic in `r` through the
+/// events with a/λ ∈ [0.05, 0.30] and `r ≤ 1.7` of the 64 × 32 mesh with the gradings
+/// (peak ratio, first layer) ∈ {4, 16} × {0.25, 0.5, 1} and (2, 2), whose last loaded
+/// elements span `r` ≈ 0.2–1.7: 195 events, residuals −0.007…+0.012 (`ASPECT_CALIB=1 cargo run --release --example fe_study`;
+/// docs/replication.md R7).
+pub const EDGE_FRACTION_BY_ASPECT: [f64; 3] = [0.6099, 0.0009, 0.0266];
 
 impl Default for EdgeRule {
     fn default() -> Self {
-        EdgeRule::Fraction(DISCRETE_EDGE_FRACTION)
+        EdgeRule::AspectFraction(EDGE_FRACTION_BY_ASPECT)
+    }
+}
+
+impl EdgeRule {
+    /// The fraction of the element between the loaded face node `loaded` and its free
+    /// neighbour `free` (current positions) at which the rule puts an edge, measured from the
+    /// loaded node. The gap-fit rules give [`DISCRETE_EDGE_FRACTION`]: their fits cover only the
+    /// right edge of a patch at the peak ([`edge_position`]).
+    pub(crate) fn fraction(self, model: &Model, st: &State, loaded: usize, free: usize) -> f64 {
+        match self {
+            EdgeRule::Fraction(phi) => phi,
+            EdgeRule::AspectFraction(c) => {
+                let r = element_aspect(model, st, loaded, free);
+                (c[0] + c[1] * r + c[2] * r * r).clamp(0.0, 1.0)
+            }
+            EdgeRule::GapPower | EdgeRule::PeriodicGap => DISCRETE_EDGE_FRACTION,
+        }
+    }
+}
+
+/// Current height over width of the surface element between face nodes `i` and `j`
+/// (neighbours): the mean of its two vertical edges' heights (face node to the node above)
+/// over `|x_j − x_i|`; 0 for a degenerate width.
+fn element_aspect(model: &Model, st: &State, i: usize, j: usize) -> f64 {
+    let mesh = &model.mesh;
+    let height = |c: usize| st.x[mesh.id(c, 1)][1] - st.x[mesh.id(c, 0)][1];
+    let width = (st.x[mesh.id(j, 0)][0] - st.x[mesh.id(i, 0)][0]).abs();
+    if width > 0.0 {
+        0.5 * (height(i) + height(j)) / width
+    } else {
+        0.0
     }
 }
 
@@ -87,8 +136,8 @@ pub(crate) fn edge_position(model: &Model, st: &State, k: usize, rule: EdgeRule)
     let x = |i: usize| st.x[b[i]][0];
     let lo = x(k.saturating_sub(1));
     let hi = x(k);
-    if let EdgeRule::Fraction(phi) = rule {
-        return lo + phi * (hi - lo);
+    if let EdgeRule::Fraction(_) | EdgeRule::AspectFraction(_) = rule {
+        return lo + rule.fraction(model, st, k.saturating_sub(1), k) * (hi - lo);
     }
     if k + 2 < b.len() {
         let gaps = model.gaps(st);
@@ -100,7 +149,9 @@ pub(crate) fn edge_position(model: &Model, st: &State, k: usize, rule: EdgeRule)
                     ((x(k + 1) - r * x(k + 2)) / (1.0 - r)).clamp(lo, hi)
                 }
                 EdgeRule::PeriodicGap => periodic_gap_fit(x(k + 1), x(k + 2), g1 / g2, lo, hi),
-                EdgeRule::Fraction(_) => unreachable!("handled above"),
+                EdgeRule::Fraction(_) | EdgeRule::AspectFraction(_) => {
+                    unreachable!("handled above")
+                }
             };
         }
     }

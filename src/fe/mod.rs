@@ -91,7 +91,7 @@ pub use curve::{
     cycle_work_over_estar_lambda2, Curve, CurvePoint, CurvePointParseError, DeformedState,
     LoadDirection, SolveWork,
 };
-pub use edge_rule::{EdgeRule, DISCRETE_EDGE_FRACTION};
+pub use edge_rule::{EdgeRule, DISCRETE_EDGE_FRACTION, EDGE_FRACTION_BY_ASPECT};
 pub use error::{CurveFailure, SolveError};
 pub use friction::{CoulombOrowan, Interface};
 pub use loading::Stepping;

@@ -8,9 +8,10 @@
 //! A run of loaded nodes `i₀ … i₁` (face order, increasing `X`) is one patch:
 //! * its right edge lies in `[x_{i₁}, x_{i₁+1}]` and its left edge in `[x_{i₀−1}, x_{i₀}]`
 //!   (current positions), each at the edge rule's fraction of the element measured from the
-//!   loaded node ([`EdgeRule::Fraction`]; a rule that fits gaps places the right edge of the
-//!   patch at the peak as [`edge_position`] does and uses [`DISCRETE_EDGE_FRACTION`] for the
-//!   other edges, which its fits do not cover);
+//!   loaded node ([`super::EdgeRule::fraction`]; a rule that fits gaps places the right edge of the
+//!   patch at the peak as [`edge_position`] does and uses
+//!   [`super::edge_rule::DISCRETE_EDGE_FRACTION`] for the other edges, which its fits do not
+//!   cover);
 //! * a patch that reaches a symmetry line (the peak node 0 at `x = 0`, the valley node at
 //!   `x = ½`) has its edge there: the patch continues in the mirror image.
 //!
@@ -18,9 +19,9 @@
 //! wavelength `[0, ½]` and their mirror images, `2 Σ (end − start)`; `2a/λ` for the single
 //! patch `[0, a]` of a sinusoid.
 
-use super::edge_rule::{edge_position, DISCRETE_EDGE_FRACTION};
+use super::edge_rule::edge_position;
 use super::model::{Model, State};
-use super::{EdgeRule, SolveOptions};
+use super::SolveOptions;
 
 /// The contact patches of `st` (with internal forces `grad`) in `[0, ½]`, in order of `x`,
 /// each `[start, end]` (units of λ, current positions); `event` is the node of the event that
@@ -43,10 +44,7 @@ pub(crate) fn contact_patches(
     let b = &model.mesh.bottom;
     let last = b.len() - 1;
     let x = |i: usize| st.x[b[i]][0];
-    let phi = match rule {
-        EdgeRule::Fraction(phi) => phi,
-        EdgeRule::GapPower | EdgeRule::PeriodicGap => DISCRETE_EDGE_FRACTION,
-    };
+    let phi = |loaded: usize, free: usize| rule.fraction(model, st, loaded, free);
     let mut patches = Vec::new();
     let mut i = 0;
     while i <= last {
@@ -62,14 +60,14 @@ pub(crate) fn contact_patches(
         let start = if i0 == 0 {
             x(0)
         } else {
-            x(i0) - phi * (x(i0) - x(i0 - 1))
+            x(i0) - phi(i0, i0 - 1) * (x(i0) - x(i0 - 1))
         };
         let end = if i1 == last {
             x(last)
         } else if i0 == 0 {
             edge_position(model, st, i1 + 1, rule)
         } else {
-            x(i1) + phi * (x(i1 + 1) - x(i1))
+            x(i1) + phi(i1, i1 + 1) * (x(i1 + 1) - x(i1))
         };
         patches.push([start, end]);
         i += 1;

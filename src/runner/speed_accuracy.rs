@@ -2,26 +2,29 @@
 //! Westergaard, WNL with a coefficient set, linear FE, finite-strain FE at several meshes — with
 //! its error against a converged reference and its cost.
 //!
-//! The reference is the Richardson extrapolation of the two finest finite-strain meshes
-//! (`reference_meshes`, refined by ρ = fine/coarse), with the order observed on those two and
-//! the mesh ρ times coarser (docs/replication.md R11). The errors are computed here; the wall
-//! times come from `timings` (measured data, written by `wavy time-tiers`: a figure that
-//! recomputed times would differ on every run).
+//! The reference is the limit of the finite-strain curves on fine meshes (`reference_meshes`),
+//! computed once by `wavy refine-reference` into the file `reference`
+//! (`super::reference_curves`; docs/replication.md R11); the order of the FE error that error
+//! estimates use is observed here on three meshes refined by a constant ratio (`order_meshes`).
+//! The errors are computed here; the wall times come from `timings` (measured data, written by
+//! `wavy time-tiers`: a figure that recomputed times would differ on every run).
 
 use super::fe_cases::{FeCase, FeOutcome, FePhysics, SolvedCases};
-use super::richardson_reference::Reference;
+use super::reference_curves::{self, ReferenceCurves};
+use super::scene_reference::Reference;
 use super::scene_output::{Layout, Remarks};
 use super::speed_accuracy_figure::figure_panels;
-use super::tier_measurement::{pareto_front, CaseMeasurements, FeCost, Measurement};
+use super::speed_accuracy_tables::{SceneColumns, Tables};
+use super::tier_measurement::{
+    error_time_trade, pareto_front, CaseMeasurements, FeCost, Measurement,
+};
 use super::scenes::{Scene, SceneContext, SceneResult};
 use super::tier_timings::{self, Timings};
 use super::RunOptions;
-use crate::accuracy::measured::PHYSICS_COLUMNS;
-use crate::accuracy::{relative_errors, Tier};
+use crate::accuracy::Tier;
 use crate::fe::{convergence, Kinematics, MeshLevel};
 use crate::models::PressureLaw;
 use crate::spec::{Bounded, FeSection, Grid, Positive, SpecError, Validator};
-use crate::table::{Cell, Table};
 use anyhow::{bail, Context, Result};
 use serde::{de, Deserialize, Deserializer};
 
@@ -40,9 +43,14 @@ pub struct SpeedAccuracyScene {
     /// The tiers measured, by name (`westergaard`, `wnl-<set>`, `fe-finite-N`, `fe-linear-N`).
     #[serde(deserialize_with = "tiers_from_names")]
     pub tiers: Vec<Tier>,
-    /// Elements along the face of the two finest finite-strain meshes, coarse then fine: the
-    /// Richardson reference.
-    pub reference_meshes: [usize; 2],
+    /// Elements along the face of the finite-strain meshes whose limit is the reference, coarse
+    /// to fine (at least three; `wavy refine-reference` solves them).
+    pub reference_meshes: Vec<usize>,
+    /// The reference curves, relative to the spec's folder (written by `wavy refine-reference`).
+    pub reference: String,
+    /// Three meshes, each the same ratio finer than the last, on which the order of the FE error
+    /// is observed (the order error estimates use).
+    pub order_meshes: [usize; 3],
     /// The measured wall times, relative to the spec's folder.
     pub timings: String,
     /// The cases' τ_max (MPa, figure columns), their physics (defaults of docs/replication.md
@@ -61,19 +69,18 @@ impl SpeedAccuracyScene {
     fn ars(&self) -> Vec<f64> {
         self.aspect_ratios.iter().map(|a| a.get()).collect()
     }
+    /// The physics of every case, in the order of `PHYSICS_COLUMNS` (the reference file's columns).
+    pub fn physics(&self) -> [f64; 5] {
+        FePhysics::from(&self.fe).by_column().map(|(_, v)| v)
+    }
+
     fn taus(&self) -> Vec<f64> {
         self.fe.tau_max_mpa.iter().map(|t| t.get()).collect()
     }
 
-    /// The three meshes of the observed order, coarse to fine (ratio ρ each).
-    pub fn order_meshes(&self) -> [usize; 3] {
-        let [coarse, fine] = self.reference_meshes;
-        [coarse * coarse / fine, coarse, fine]
-    }
-
-    /// The refinement ratio ρ = fine/coarse of the reference meshes.
+    /// The refinement ratio ρ of the order meshes.
     fn refinement_ratio(&self) -> f64 {
-        self.reference_meshes[1] as f64 / self.reference_meshes[0] as f64
+        self.order_meshes[2] as f64 / self.order_meshes[1] as f64
     }
 
     /// The FE case of an FE tier (or a reference mesh) at (AR, τ_max in MPa).
@@ -96,7 +103,7 @@ impl SpeedAccuracyScene {
             } => Some((kinematics, elements_along_face)),
             _ => None,
         });
-        let order = self.order_meshes().map(|n| (Kinematics::Finite, n));
+        let order = self.order_meshes.map(|n| (Kinematics::Finite, n));
         for k in tiers.chain(order) {
             if !out.contains(&k) {
                 out.push(k);
@@ -146,21 +153,33 @@ impl Scene for SpeedAccuracyScene {
                 ));
             }
         }
-        let [coarse, fine] = self.reference_meshes;
-        let [coarsest, ..] = self.order_meshes();
         let range = MeshLevel::ELEMENTS_ALONG_FACE;
-        if !(fine > coarse
-            && range.contains(&coarse)
+        let [coarsest, coarse, fine] = self.order_meshes;
+        if !(coarsest < coarse
+            && coarse < fine
+            && range.contains(&coarsest)
             && range.contains(&fine)
-            && coarsest * fine == coarse * coarse
-            && coarsest >= 4)
+            && coarsest * fine == coarse * coarse)
         {
+            return Err(v.invalid(
+                "speed_accuracy.order_meshes",
+                None,
+                format!("{:?}", self.order_meshes),
+                format!(
+                    "three increasing element counts in {}..={}, each the same ratio finer than the last (middle² = first × last)",
+                    range.start(),
+                    range.end()
+                ),
+            ));
+        }
+        let r = &self.reference_meshes;
+        if !(r.len() >= 3 && r.windows(2).all(|w| w[0] < w[1]) && r.iter().all(|n| range.contains(n))) {
             return Err(v.invalid(
                 "speed_accuracy.reference_meshes",
                 None,
-                format!("{:?}", self.reference_meshes),
+                format!("{r:?}"),
                 format!(
-                    "[coarse, fine] element counts with fine > coarse, in {}..={}, and coarse²/fine a whole number ≥ 4 (the third mesh of the observed order)",
+                    "at least three increasing element counts in {}..={} (the limit fitted through them has three terms)",
                     range.start(),
                     range.end()
                 ),
@@ -212,7 +231,20 @@ impl Scene for SpeedAccuracyScene {
         let path = ctx.spec_dir.join(&self.timings);
         let timings = tier_timings::read(&path)
             .with_context(|| format!("speed_accuracy.timings: {}", path.display()))?;
-        run(ctx.title, self, &timings, &self.timings, ctx.opts)
+        let path = ctx.spec_dir.join(&self.reference);
+        let reference = reference_curves::read(&path)
+            .with_context(|| format!("speed_accuracy.reference: {}", path.display()))?;
+        let meshes = reference
+            .meshes()
+            .with_context(|| format!("speed_accuracy.reference: {}", path.display()))?;
+        if meshes != self.reference_meshes {
+            bail!(
+                "speed_accuracy.reference: {} holds the limit of meshes {meshes:?}, the spec asks for {:?}: recompute it with `wavy refine-reference` (make reference)",
+                path.display(),
+                self.reference_meshes
+            );
+        }
+        run(ctx.title, self, &timings, &self.timings, &reference, ctx.opts)
     }
 }
 
@@ -221,25 +253,33 @@ fn run(
     s: &SpeedAccuracyScene,
     timings: &Timings,
     timings_name: &str,
+    reference_curves: &ReferenceCurves,
     opts: &RunOptions,
 ) -> Result<SceneResult> {
     let (ars, taus) = (s.ars(), s.taus());
     let solved = SolvedCases::solve(s.fe_cases(opts), opts)?;
-    let mut tables = Tables::new();
+    let mut tables = Tables::new(SceneColumns {
+        a_over_lambda: s.a_over_lambda.values(),
+        error_bands: s.error_bands.clone(),
+        order_meshes: s.order_meshes,
+        reference_meshes: s.reference_meshes.clone(),
+        physics: s.physics(),
+    });
     let mut cases = vec![];
     for &ar in &ars {
         for &tau in &taus {
-            let reference = reference(s, &solved, ar, tau)?;
-            tables.push_reference(s, &reference, ar, tau);
+            let reference = reference(s, &solved, reference_curves, ar, tau)?;
+            tables.push_reference(&reference, ar, tau);
             let mut measurements = vec![];
             for tier in &s.tiers {
                 let m = measure(s, &solved, timings, timings_name, tier, ar, tau)?;
                 let values = m.1.as_deref();
-                tables.push_bands(s, tier, values, &reference.p_over_estar, ar, tau);
+                tables.push_bands(tier, values, &reference.p_over_estar, ar, tau);
                 measurements.push(m.0.with_errors(values, &reference.p_over_estar));
             }
             let front = pareto_front(&measurements);
             tables.push_measurements(&measurements, &front, ar, tau);
+            tables.push_trade(error_time_trade(&measurements).as_ref(), ar, tau);
             cases.push(CaseMeasurements {
                 aspect_ratio: ar,
                 tau_max_mpa: tau,
@@ -267,24 +307,32 @@ fn run(
     Ok(remarks.finish(title, layout, panels, tables.into_vec()))
 }
 
-/// The reference of the case (AR, τ_max in MPa): Richardson on the two finest meshes, the order
-/// observed with the third.
-fn reference(s: &SpeedAccuracyScene, solved: &SolvedCases, ar: f64, tau: f64) -> Result<Reference> {
+/// The reference of the case (AR, τ_max in MPa): the committed limit on the a/λ grid, the order
+/// observed on the order meshes.
+fn reference(
+    s: &SpeedAccuracyScene,
+    solved: &SolvedCases,
+    reference_curves: &ReferenceCurves,
+    ar: f64,
+    tau: f64,
+) -> Result<Reference> {
     let at = format!("AR = {ar}, τ_max = {tau} MPa");
-    let curves = s.order_meshes().map(|nx| {
+    let curves = s.order_meshes.map(|nx| {
         let o = curve(s, solved, Kinematics::Finite, nx, ar, tau);
         (nx, o)
     });
     for (nx, o) in &curves {
         if let Some(f) = &o.failure {
-            bail!("{at}: the reference needs the finite-strain curve on mesh {nx}, which stopped: {f}");
+            bail!("{at}: the observed order needs the finite-strain curve on mesh {nx}, which stopped: {f}");
         }
     }
+    let limit = reference_curves.case(ar, tau, s.physics());
     Reference::of(
         curves.map(|(_, o)| o.points.as_slice()),
-        s.order_meshes(),
+        s.order_meshes,
         s.refinement_ratio(),
         &s.a_over_lambda.values(),
+        &limit,
         &at,
     )
 }
@@ -374,142 +422,21 @@ fn measure(
     Ok((m, values))
 }
 
-/// The scene's three tables: each tier's measurement, the reference of each case, and each
-/// tier's largest error per a/λ band.
-struct Tables {
-    main: Table,
-    reference: Table,
-    bands: Table,
-}
-
-impl Tables {
-    fn new() -> Self {
-        let mut reference_header = vec!["aspect_ratio", "tau_max_mpa"];
-        reference_header.extend(PHYSICS_COLUMNS);
-        reference_header.extend([
-            "a_over_lambda_min",
-            "a_over_lambda_max",
-            "order_meshes",
-            "observed_order",
-            "order_used",
-            "reference_error_estimate",
-            "reference_uncertainty",
-        ]);
-        Tables {
-            main: Table::new("", &MAIN_HEADER),
-            reference: Table::new("reference", &reference_header),
-            bands: Table::new("bands", &BANDS_HEADER),
-        }
-    }
-
-    fn push_reference(&mut self, s: &SpeedAccuracyScene, r: &Reference, ar: f64, tau: f64) {
-        let xs = s.a_over_lambda.values();
-        let [order_mesh, coarse, fine] = s.order_meshes();
-        let mut row: Vec<Cell> = vec![ar.into(), tau.into()];
-        row.extend(FePhysics::from(&s.fe).by_column().map(|(_, v)| v.into()));
-        row.extend([
-            xs[0].into(),
-            xs[xs.len() - 1].into(),
-            format!("{order_mesh} {coarse} {fine}").into(),
-            r.observed_order.into(),
-            r.order_used.into(),
-            r.error_estimate.into(),
-            r.uncertainty.into(),
-        ]);
-        self.reference.push(row);
-    }
-
-    /// The largest error of `tier`'s `values` against `reference` in each a/λ band.
-    fn push_bands(
-        &mut self,
-        s: &SpeedAccuracyScene,
-        tier: &Tier,
-        values: Option<&[f64]>,
-        reference: &[f64],
-        ar: f64,
-        tau: f64,
-    ) {
-        let xs = s.a_over_lambda.values();
-        for band in s.error_bands.windows(2) {
-            let in_band: Vec<usize> = (0..xs.len())
-                .filter(|&i| band[0] <= xs[i] && xs[i] <= band[1])
-                .collect();
-            let error = values.map(|v| {
-                let pick = |w: &[f64]| in_band.iter().map(|&i| w[i]).collect::<Vec<_>>();
-                relative_errors(&pick(v), &pick(reference)).max
-            });
-            self.bands.push(vec![
-                tier.name().into(),
-                ar.into(),
-                tau.into(),
-                band[0].into(),
-                band[1].into(),
-                error.into(),
-            ]);
-        }
-    }
-
-    fn push_measurements(&mut self, ms: &[Measurement], front: &[usize], ar: f64, tau: f64) {
-        for (i, m) in ms.iter().enumerate() {
-            self.main.push(vec![
-                m.tier.name().into(),
-                ar.into(),
-                tau.into(),
-                m.status.clone().into(),
-                m.errors.map(|e| e.max).into(),
-                m.errors.map(|e| e.rms).into(),
-                m.seconds_per_curve.into(),
-                m.seconds_per_point.into(),
-                m.fe.as_ref().map(|f| f.dofs as f64).into(),
-                m.fe.as_ref().map(|f| f.load_steps as f64).into(),
-                m.fe.as_ref().map(|f| f.newton_iterations as f64).into(),
-                front.contains(&i).into(),
-            ]);
-        }
-    }
-
-    fn into_vec(self) -> Vec<Table> {
-        vec![self.main, self.reference, self.bands]
-    }
-}
-
-const MAIN_HEADER: [&str; 12] = [
-    "tier",
-    "aspect_ratio",
-    "tau_max_mpa",
-    "status",
-    "max_rel_error",
-    "rms_rel_error",
-    "seconds_per_curve",
-    "seconds_per_point",
-    "dofs",
-    "load_steps",
-    "newton_iterations",
-    "pareto",
-];
-
-const BANDS_HEADER: [&str; 6] = [
-    "tier",
-    "aspect_ratio",
-    "tau_max_mpa",
-    "a_over_lambda_from",
-    "a_over_lambda_to",
-    "max_rel_error",
-];
-
 /// The footer: how the error and the wall time are measured.
 fn footer(s: &SpeedAccuracyScene, timings: &Timings, timings_name: &str) -> Vec<String> {
     let xs = s.a_over_lambda.values();
-    let [order_mesh, coarse, fine] = s.order_meshes();
+    let meshes: Vec<String> = s.reference_meshes.iter().map(|n| n.to_string()).collect();
     let physics = FePhysics::from(&s.fe);
     let mut footer = vec![
         format!(
-            "Error: largest over a/λ ∈ [{}, {}] against the Richardson extrapolation of FE meshes {coarse} and {fine}",
+            "Error: largest over a/λ ∈ [{}, {}] against the limit p₀ + c₁/n + c₂/n² of FE meshes n = {}",
             xs[0],
             xs[xs.len() - 1],
+            meshes.join(", "),
         ),
         format!(
-            "(order observed with mesh {order_mesh}); E* = {} MPa, κ/G = {}, h/λ = {}, μ = {}. FE markers right to left: finer meshes.",
+            "({}); E* = {} MPa, κ/G = {}, h/λ = {}, μ = {}. FE markers right to left: finer meshes.",
+            s.reference,
             physics.estar_mpa,
             physics.kappa_over_g,
             physics.thickness_over_lambda,

@@ -67,3 +67,45 @@ impl Measurement {
         }
     }
 }
+
+/// What accuracy costs along a case's finite-strain FE tiers: the exponent `s` of
+/// `error ∝ time^s`, fitted by least squares in log–log through the tiers of at least
+/// [`TRADE_FROM_ELEMENTS`] elements along the face that have a curve, and the factor of wall time
+/// that halves the error, `2^(−1/s)`.
+pub(super) struct ErrorTimeTrade {
+    /// The tiers fitted, in the case's order.
+    pub tiers: Vec<Tier>,
+    pub exponent: f64,
+    pub time_factor_per_halving: f64,
+}
+
+/// The coarsest finite-strain mesh of [`error_time_trade`]: below it the coarse meshes do not
+/// reach a/λ = 0.45 at every case, and their error is not yet in its asymptotic range.
+pub(super) const TRADE_FROM_ELEMENTS: usize = 32;
+
+/// The [`ErrorTimeTrade`] of a case's measurements; `None` with fewer than two such tiers or an
+/// error that does not fall with the time.
+pub(super) fn error_time_trade(ms: &[Measurement]) -> Option<ErrorTimeTrade> {
+    let fitted: Vec<&Measurement> = ms
+        .iter()
+        .filter(|m| {
+            m.tier.is_finite_fe()
+                && m.tier
+                    .mesh()
+                    .is_some_and(|l| l.counts().0 >= TRADE_FROM_ELEMENTS)
+                && m.errors.is_some()
+        })
+        .collect();
+    if fitted.len() < 2 {
+        return None;
+    }
+    let log_time: Vec<f64> = fitted.iter().map(|m| m.seconds_per_curve.ln()).collect();
+    let log_error: Vec<f64> = fitted.iter().map(|m| m.errors.unwrap().max.ln()).collect();
+    let c = crate::accuracy::extrapolation::polynomial_least_squares(&log_time, &log_error, 1)?;
+    let exponent = c[1];
+    (exponent < 0.0).then(|| ErrorTimeTrade {
+        tiers: fitted.iter().map(|m| m.tier).collect(),
+        exponent,
+        time_factor_per_halving: 2f64.powf(-1.0 / exponent),
+    })
+}
