@@ -34,8 +34,8 @@ pub enum EdgeRule {
     /// height of its two vertical edges at the face over `x_k − x_{k−1}`. The self-similar
     /// edge solution of [`EdgeRule::Fraction`] lives at the scale of the element, so its
     /// fraction depends on the element's shape, which the grading and the stretch of the
-    /// surface vary along the face (from r ≈ 1.5 under the peak to r ≈ 0.3 near the valley
-    /// at AR 0.3). The default, with [`EDGE_FRACTION_BY_ASPECT`].
+    /// surface vary along the face (from r ≈ 1.5 under the peak to r ≈ 0.6 near the valley,
+    /// less at AR 0.3). The default, with [`EDGE_FRACTION_BY_ASPECT`].
     AspectFraction([f64; 3]),
     /// Fit of the periodic Westergaard gap shape `g ∝ G(x; a)` through the vertical gaps
     /// of nodes `k + 1`, `k + 2` (exact in the linear limit, `(x − a)^{3/2}` near the
