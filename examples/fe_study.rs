@@ -10,15 +10,30 @@ fn env(name: &str, default: &str) -> String {
     std::env::var(name).unwrap_or_else(|_| default.to_string())
 }
 
-/// Calibration of `DISCRETE_EDGE_FRACTION`: linear kinematics, AR = 0.01, the edge that
-/// Westergaard's `p̄/E* = π AR sin²(π a)` gives for the computed `p̄`, as a fraction of
-/// `[x_{k−1}, x_k]` (the two ends from the fractions 0 and 1), per mesh level.
-fn calibrate(levels: &[usize], ny_over_nx: f64, opts: &SolveOptions) {
-    let ar = 0.01;
-    let pb = LayerProblem {
+/// The aspect ratio of the edge calibrations: small enough that the linear problem is
+/// Westergaard's.
+const CALIBRATION_AR: f64 = 0.01;
+
+/// The problem the edge rules are calibrated on: linear kinematics at [`CALIBRATION_AR`].
+fn calibration_problem() -> LayerProblem {
+    LayerProblem {
         kinematics: Kinematics::Linear,
-        ..wavy::defaults::layer_problem(ar)
-    };
+        ..wavy::defaults::layer_problem(CALIBRATION_AR)
+    }
+}
+
+/// The contact half-width a/λ that Westergaard's `p̄/E* = π AR sin²(π a)` gives for `p̄/E*` at
+/// [`CALIBRATION_AR`] (NaN beyond full contact).
+fn westergaard_a(p_over_estar: f64) -> f64 {
+    let pi = std::f64::consts::PI;
+    (p_over_estar / (pi * CALIBRATION_AR)).sqrt().asin() / pi
+}
+
+/// Calibration of `DISCRETE_EDGE_FRACTION`: the edge that Westergaard gives for the computed `p̄`
+/// on [`calibration_problem`], as a fraction of `[x_{k−1}, x_k]` (the two ends from the fractions
+/// 0 and 1), per mesh level.
+fn calibrate(levels: &[usize], ny_over_nx: f64, opts: &SolveOptions) {
+    let pb = calibration_problem();
     for &nx in levels {
         let ny = ((nx as f64 * ny_over_nx).round() as usize).max(1);
         let run = |phi| {
@@ -34,8 +49,7 @@ fn calibrate(levels: &[usize], ny_over_nx: f64, opts: &SolveOptions) {
         let (lo, hi) = (run(0.0), run(1.0));
         let mut phis = Vec::new();
         for (l, h) in lo.iter().zip(&hi) {
-            let s2 = l.p_over_estar / (std::f64::consts::PI * ar);
-            let a = s2.sqrt().asin() / std::f64::consts::PI;
+            let a = westergaard_a(l.p_over_estar);
             if (0.1..=0.35).contains(&a) {
                 phis.push((a - l.a_over_lambda) / (h.a_over_lambda - l.a_over_lambda));
             }
@@ -57,11 +71,7 @@ fn calibrate(levels: &[usize], ny_over_nx: f64, opts: &SolveOptions) {
 /// quadratic φ(r). The rule changes only the reported a, so three runs give, event by event, the
 /// ends of the last loaded element (fractions 0 and 1) and r (the fraction r/2).
 fn calibrate_aspect() {
-    let ar = 0.01;
-    let pb = LayerProblem {
-        kinematics: Kinematics::Linear,
-        ..wavy::defaults::layer_problem(ar)
-    };
+    let pb = calibration_problem();
     let gradings = [
         (4.0, 0.25),
         (4.0, 0.5),
@@ -97,11 +107,10 @@ fn calibrate_aspect() {
                 "the rule moved the solution"
             );
             let width = h.a_over_lambda - l.a_over_lambda;
-            let s2 = l.p_over_estar / (std::f64::consts::PI * ar);
-            if width <= 0.0 || s2 >= 1.0 {
+            let a = westergaard_a(l.p_over_estar);
+            if width <= 0.0 || !a.is_finite() {
                 continue;
             }
-            let a = s2.sqrt().asin() / std::f64::consts::PI;
             let r = 2.0 * (m.a_over_lambda - l.a_over_lambda) / width;
             if (0.05..=0.30).contains(&a) && r <= 1.7 {
                 pairs.push((r, (a - l.a_over_lambda) / width));

@@ -82,6 +82,19 @@ mod tests {
         assert!(mesh_limit(&meshes[..2], &values[..2]).is_none());
     }
 
+    /// With three meshes the fit is exact, and the spread is that of the first-order Richardson
+    /// steps: for p(n) = 0.5 + 0.3/n it is zero, a second-order term makes it positive.
+    #[test]
+    fn three_meshes_spread_by_the_first_order_steps() {
+        let meshes = [32, 48, 72];
+        let first: Vec<f64> = meshes.iter().map(|&n| 0.5 + 0.3 / n as f64).collect();
+        let (p0, spread) = mesh_limit_with_spread(&meshes, &first).unwrap();
+        assert!((p0 - 0.5).abs() < 1e-12 && spread < 1e-12, "{p0} {spread}");
+        let second: Vec<f64> = meshes.iter().map(|&n| 0.5 + 5.0 / (n * n) as f64).collect();
+        let (p0, spread) = mesh_limit_with_spread(&meshes, &second).unwrap();
+        assert!((p0 - 0.5).abs() < 1e-12 && spread > 1e-4, "{p0} {spread}");
+    }
+
     #[test]
     fn least_squares_fits_a_quadratic() {
         let xs = [0.0, 1.0, 2.0, 3.0, 4.0];

@@ -60,8 +60,8 @@ pub const DISCRETE_EDGE_FRACTION: f64 = 0.64;
 /// Westergaard gives for the computed `p̄`): a least-squares quadratic in `r` through the
 /// events with a/λ ∈ [0.05, 0.30] and `r ≤ 1.7` of the 64 × 32 mesh with the gradings
 /// (peak ratio, first layer) ∈ {4, 16} × {0.25, 0.5, 1} and (2, 2), whose last loaded
-/// elements span `r` ≈ 0.2–1.7: 195 events, residuals −0.007…+0.012 (`ASPECT_CALIB=1 cargo run --release --example fe_study`;
-/// docs/replication.md R7).
+/// elements span `r` ≈ 0.2–1.7: 195 events, residuals −0.007…+0.012 (`ASPECT_CALIB=1 cargo run
+/// --release --example fe_study`; docs/replication.md R7).
 pub const EDGE_FRACTION_BY_ASPECT: [f64; 3] = [0.6099, 0.0009, 0.0266];
 
 impl Default for EdgeRule {

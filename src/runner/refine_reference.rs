@@ -16,12 +16,12 @@ pub fn compute(scene: &SpeedAccuracyScene, opts: &RunOptions) -> Result<Referenc
     let meshes = &scene.reference_meshes;
     let xs = scene.a_over_lambda.values();
     let physics = scene.physics();
-    let mut cases: Vec<(f64, f64)> = vec![];
-    for tau in scene.fe.tau_max_mpa.iter().map(|t| t.get()) {
-        for ar in scene.aspect_ratios.iter().map(|a| a.get()) {
-            cases.push((ar, tau));
-        }
-    }
+    let ars = scene.ars();
+    let cases: Vec<(f64, f64)> = scene
+        .taus()
+        .into_iter()
+        .flat_map(|tau| ars.iter().map(move |&ar| (ar, tau)))
+        .collect();
     let fe_cases: Vec<FeCase> = cases
         .iter()
         .flat_map(|&(ar, tau)| {

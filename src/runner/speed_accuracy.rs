@@ -66,7 +66,8 @@ fn tiers_from_names<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Tier>, D::Err
 }
 
 impl SpeedAccuracyScene {
-    fn ars(&self) -> Vec<f64> {
+    /// The aspect ratios of the cases.
+    pub(crate) fn ars(&self) -> Vec<f64> {
         self.aspect_ratios.iter().map(|a| a.get()).collect()
     }
     /// The physics of every case, in the order of `PHYSICS_COLUMNS` (the reference file's columns).
@@ -74,7 +75,8 @@ impl SpeedAccuracyScene {
         FePhysics::from(&self.fe).by_column().map(|(_, v)| v)
     }
 
-    fn taus(&self) -> Vec<f64> {
+    /// The τ_max of the cases, MPa.
+    pub(crate) fn taus(&self) -> Vec<f64> {
         self.fe.tau_max_mpa.iter().map(|t| t.get()).collect()
     }
 

@@ -109,3 +109,39 @@ pub(super) fn error_time_trade(ms: &[Measurement]) -> Option<ErrorTimeTrade> {
         time_factor_per_halving: 2f64.powf(-1.0 / exponent),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fe(nx: usize, error: Option<f64>, seconds: f64) -> Measurement {
+        Measurement {
+            tier: format!("fe-finite-{nx}").parse().unwrap(),
+            errors: error.map(|e| ErrorSummary { max: e, rms: e }),
+            status: String::new(),
+            seconds_per_curve: seconds,
+            seconds_per_point: None,
+            fe: None,
+        }
+    }
+
+    /// Error ∝ time^(−1/2) gives s = −½ and a factor 4 per halving; tiers below
+    /// `TRADE_FROM_ELEMENTS` and tiers without a curve are left out; an error that grows with
+    /// the time gives no trade.
+    #[test]
+    fn the_trade_of_a_power_law_is_recovered() {
+        let ms = [
+            fe(16, Some(0.5), 0.001),
+            fe(32, Some(0.04), 1.0),
+            fe(48, None, 2.0),
+            fe(64, Some(0.02), 4.0),
+            fe(96, Some(0.01), 16.0),
+        ];
+        let t = error_time_trade(&ms).unwrap();
+        assert_eq!(t.tiers.len(), 3);
+        assert!((t.exponent + 0.5).abs() < 1e-12, "{}", t.exponent);
+        assert!((t.time_factor_per_halving - 4.0).abs() < 1e-9);
+        let rising = [fe(32, Some(0.01), 1.0), fe(64, Some(0.02), 4.0)];
+        assert!(error_time_trade(&rising).is_none());
+    }
+}
