@@ -132,6 +132,25 @@ fn spec_values_out_of_physical_range_name_field_value_and_range() {
             "value 0.6 is out of range; allowed: [0, 0.5]",
         ],
     );
+    // a Richardson tier's meshes are tiers (its time is theirs), coarse before fine
+    bad_spec(
+        "speed_accuracy.toml",
+        "\"fe-richardson-48-96\"",
+        "\"fe-richardson-48-128\"",
+        &[
+            "speed_accuracy.tiers[11]",
+            "fe-finite-48 and fe-finite-128 among the tiers too",
+        ],
+    );
+    bad_spec(
+        "speed_accuracy.toml",
+        "\"fe-richardson-48-96\"",
+        "\"fe-richardson-96-48\"",
+        &[
+            "speed_accuracy.tiers",
+            "value \"fe-richardson-96-48\" is not a tier",
+        ],
+    );
 }
 
 #[test]

@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::process::{Command, Output};
 use wavy::accuracy::measured::{committed, Query};
-use wavy::runner::{load_spec, run_spec_file, tier_timings, RunOptions};
+use wavy::runner::{load_spec, reference_curves, run_spec_file, tier_timings, RunOptions};
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -141,15 +141,16 @@ fn committed_spec_has_a_timing_for_every_tier_and_case() {
     let mut n = 0;
     for ar in &s.aspect_ratios {
         for tau in &s.fe.tau_max_mpa {
-            for tier in &s.tiers {
-                let t = timings.get(tier, ar.get(), tau.get());
+            for tier in s.tiers.iter().flat_map(|t| t.timed_tiers()) {
+                let t = timings.get(&tier, ar.get(), tau.get());
                 assert!(t.is_some_and(|t| t.runs >= 3), "{tier} at {ar:?}, {tau:?}");
                 n += 1;
             }
         }
     }
-    // 3 aspect ratios × 2 τ_max × 11 tiers of experiments/speed_accuracy.toml
-    assert_eq!(n, 66);
+    // 3 aspect ratios × 2 τ_max × (11 tiers + the 2 meshes of fe-richardson-48-96) of
+    // experiments/speed_accuracy.toml
+    assert_eq!(n, 78);
 }
 
 #[test]
@@ -248,6 +249,55 @@ fn eval_tolerance_names_its_tier_or_refuses_with_exit_2() {
         "{}",
         stderr(&below)
     );
+}
+
+/// `--tolerance 0.001` over the whole curve picks the Richardson tier where it is measured to
+/// meet it (frictionless AR 0.3: 0.086 % against 0.17 % for mesh 96), and what it answers is
+/// within the tolerance of the committed converged reference at every a/λ asked (measured
+/// 0.02–0.09 %).
+#[test]
+fn eval_tolerance_picks_the_richardson_tier_and_meets_it() {
+    let o = wavy(&[
+        "eval",
+        "--tolerance",
+        "0.001",
+        "--ar",
+        "0.3",
+        "--a-over-lambda",
+        "0.05",
+        "0.1",
+        "0.25",
+        "0.45",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("tier fe-richardson-48-96 (measured error ≤"),
+        "{}",
+        stderr(&o)
+    );
+    let spec = load_spec(&root().join("experiments/speed_accuracy.toml")).unwrap();
+    let s = spec.speed_accuracy.as_ref().unwrap();
+    let reference = reference_curves::read(&root().join("experiments").join(&s.reference)).unwrap();
+    let limit = reference.case(0.3, 0.0, s.physics());
+    let text = String::from_utf8_lossy(&o.stdout);
+    let mut rows = 0;
+    for line in text.lines().skip(1) {
+        let row: Vec<&str> = line.split(',').collect();
+        assert_eq!(row[0], "fe-richardson-48-96", "{line}");
+        let (a, p): (f64, f64) = (row[5].parse().unwrap(), row[6].parse().unwrap());
+        let r = limit
+            .iter()
+            .find(|r| (r.a_over_lambda - a).abs() < 1e-9)
+            .unwrap();
+        let e = (p / r.p_over_estar - 1.0).abs();
+        assert!(
+            e <= 0.001,
+            "a/λ {a}: {p} against {} ({e:.2e})",
+            r.p_over_estar
+        );
+        rows += 1;
+    }
+    assert_eq!(rows, 4);
 }
 
 #[test]

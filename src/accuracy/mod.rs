@@ -30,7 +30,17 @@ pub enum Tier {
         kinematics: Kinematics,
         elements_along_face: usize,
     },
+    /// Richardson extrapolation of our finite-strain FE from two meshes, `coarse` < `fine`
+    /// elements along the face, at the order [`RICHARDSON_TIER_ORDER`]:
+    /// `p_fine + (p_fine − p_coarse) / (fine/coarse − 1)` at each a/λ
+    /// ([`richardson_tier_values`]).
+    FeRichardson { coarse: usize, fine: usize },
 }
+
+/// The order of the error that a [`Tier::FeRichardson`] removes: first, the order of the edge
+/// rule's residual error, which leads on the meshes the tiers use (docs/replication.md R11: on
+/// meshes 48 and 96 first order leaves less error than second in four of the six measured cases).
+pub const RICHARDSON_TIER_ORDER: f64 = 1.0;
 
 impl Tier {
     /// The name used in tables, specs and messages: `westergaard`, `wnl-paper-table1`,
@@ -43,12 +53,44 @@ impl Tier {
                 kinematics,
                 elements_along_face,
             } => format!("fe-{}-{elements_along_face}", kinematics.name()),
+            Tier::FeRichardson { coarse, fine } => format!("fe-richardson-{coarse}-{fine}"),
+        }
+    }
+
+    /// The FE curves a tier computes: its mesh, or a Richardson tier's two (finite strain);
+    /// none for a closed form.
+    pub fn fe_curves(&self) -> Vec<(Kinematics, usize)> {
+        match *self {
+            Tier::Fe {
+                kinematics,
+                elements_along_face,
+            } => vec![(kinematics, elements_along_face)],
+            Tier::FeRichardson { coarse, fine } => {
+                vec![(Kinematics::Finite, coarse), (Kinematics::Finite, fine)]
+            }
+            _ => vec![],
+        }
+    }
+
+    /// The tiers whose wall times make up this tier's: itself, or a Richardson tier's two
+    /// meshes (a timings file times those, not the extrapolation).
+    pub fn timed_tiers(&self) -> Vec<Tier> {
+        match *self {
+            Tier::FeRichardson { .. } => self
+                .fe_curves()
+                .into_iter()
+                .map(|(kinematics, elements_along_face)| Tier::Fe {
+                    kinematics,
+                    elements_along_face,
+                })
+                .collect(),
+            _ => vec![*self],
         }
     }
 
     /// True for the closed-form laws (cost per point, no mesh).
     pub fn is_closed_form(&self) -> bool {
-        !matches!(self, Tier::Fe { .. })
+        self.fe_curves().is_empty()
     }
 
     /// True for our finite-strain FE (the paper's physics; the tiers a tolerance picks a mesh
@@ -89,7 +131,7 @@ impl Tier {
         let (kind, set) = match *self {
             Tier::Westergaard => (ModelKind::Westergaard, CoefficientSet::default()),
             Tier::Wnl(set) => (ModelKind::Wnl, set),
-            Tier::Fe { .. } => return None,
+            Tier::Fe { .. } | Tier::FeRichardson { .. } => return None,
         };
         Some(ModelLaw::new(
             kind,
@@ -109,7 +151,7 @@ impl fmt::Display for Tier {
 
 /// A name that is not a tier.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("value \"{0}\" is not a tier; allowed: westergaard, wnl-<coefficient set> ({sets}), fe-finite-N or fe-linear-N (N elements along the face, {lo} to {hi})", sets = CoefficientSet::names(), lo = MeshLevel::ELEMENTS_ALONG_FACE.start(), hi = MeshLevel::ELEMENTS_ALONG_FACE.end())]
+#[error("value \"{0}\" is not a tier; allowed: westergaard, wnl-<coefficient set> ({sets}), fe-finite-N or fe-linear-N (N elements along the face, {lo} to {hi}), fe-richardson-C-F (meshes C < F in the same range)", sets = CoefficientSet::names(), lo = MeshLevel::ELEMENTS_ALONG_FACE.start(), hi = MeshLevel::ELEMENTS_ALONG_FACE.end())]
 pub struct TierParseError(pub String);
 
 impl FromStr for Tier {
@@ -122,13 +164,24 @@ impl FromStr for Tier {
         if let Some(set) = s.strip_prefix("wnl-") {
             return set.parse().map(Tier::Wnl).map_err(|_| bad());
         }
+        let elements = |n: &str| {
+            n.parse::<usize>()
+                .ok()
+                .filter(|n| MeshLevel::ELEMENTS_ALONG_FACE.contains(n))
+                .ok_or_else(bad)
+        };
+        if let Some(meshes) = s.strip_prefix("fe-richardson-") {
+            let (coarse, fine) = meshes.split_once('-').ok_or_else(bad)?;
+            let (coarse, fine) = (elements(coarse)?, elements(fine)?);
+            if coarse >= fine {
+                return Err(bad());
+            }
+            return Ok(Tier::FeRichardson { coarse, fine });
+        }
         let rest = s.strip_prefix("fe-").ok_or_else(bad)?;
         let (kinematics, n) = rest.rsplit_once('-').ok_or_else(bad)?;
         let kinematics: Kinematics = kinematics.parse().map_err(|_| bad())?;
-        let elements_along_face: usize = n.parse().map_err(|_| bad())?;
-        if !MeshLevel::ELEMENTS_ALONG_FACE.contains(&elements_along_face) {
-            return Err(bad());
-        }
+        let elements_along_face = elements(n)?;
         Ok(Tier::Fe {
             kinematics,
             elements_along_face,
@@ -170,6 +223,23 @@ pub fn relative_errors(values: &[f64], reference: &[f64]) -> ErrorSummary {
 /// of order `order`: `fine + (fine − coarse) / (ratio^order − 1)`.
 pub fn richardson(coarse: f64, fine: f64, ratio: f64, order: f64) -> f64 {
     fine + (fine - coarse) / (ratio.powf(order) - 1.0)
+}
+
+/// The p̄/E* of a [`Tier::FeRichardson`] at each a/λ of `xs`, from its curves on meshes of
+/// `coarse` and `fine` elements along the face ([`p_at`]); `None` if either curve does not
+/// cover `xs`.
+pub fn richardson_tier_values(
+    coarse: (&[CurvePoint], usize),
+    fine: (&[CurvePoint], usize),
+    xs: &[f64],
+) -> Option<Vec<f64>> {
+    let ratio = fine.1 as f64 / coarse.1 as f64;
+    xs.iter()
+        .map(|&x| {
+            let (c, f) = (p_at(coarse.0, x)?, p_at(fine.0, x)?);
+            Some(richardson(c, f, ratio, RICHARDSON_TIER_ORDER))
+        })
+        .collect()
 }
 
 /// The Richardson estimate of the relative error of `fine`: `|fine − coarse| / (ratio^order − 1)
@@ -234,6 +304,10 @@ mod tests {
                 kinematics: Kinematics::Linear,
                 elements_along_face: 48,
             },
+            Tier::FeRichardson {
+                coarse: 48,
+                fine: 96,
+            },
         ];
         for t in tiers {
             assert_eq!(t.name().parse::<Tier>(), Ok(t));
@@ -246,6 +320,11 @@ mod tests {
             "fe-finite-3",
             "fe-plastic-48",
             "fe-finite-x",
+            "fe-richardson-96-48",
+            "fe-richardson-48-48",
+            "fe-richardson-48",
+            "fe-richardson-3-48",
+            "fe-richardson-48-96-128",
         ] {
             assert!(bad.parse::<Tier>().is_err(), "{bad}");
         }
@@ -276,27 +355,42 @@ mod tests {
         assert_eq!(coarser_level(MeshLevel::Elements { nx: 5, ny: 2 }), None);
     }
 
+    /// The curve p̄/E* = `scale`·a² at a/λ = 0.02, 0.04, …, 0.4.
+    fn curve(scale: f64) -> Vec<CurvePoint> {
+        (1..=20)
+            .map(|i| {
+                let a = 0.02 * i as f64;
+                CurvePoint {
+                    a_over_lambda: a,
+                    p_over_estar: scale * a * a,
+                    p_over_estar_reaction: scale * a * a,
+                    slab_displacement_over_lambda: 0.0,
+                    newton_iterations: 1,
+                    active_nodes: i,
+                    contact_fraction: 2.0 * a,
+                    patches: 1,
+                }
+            })
+            .collect()
+    }
+
+    /// Curves p_n = a²(1 + 3/n) on meshes 48 and 96: the first-order Richardson tier removes
+    /// the error exactly; a coarse curve that starts late leaves the tier without values.
+    #[test]
+    fn the_richardson_tier_removes_a_first_order_error() {
+        let (coarse, fine) = (curve(1.0 + 3.0 / 48.0), curve(1.0 + 3.0 / 96.0));
+        let xs = [0.1, 0.2, 0.4];
+        let v = richardson_tier_values((&coarse, 48), (&fine, 96), &xs).unwrap();
+        for (x, p) in xs.iter().zip(&v) {
+            assert!((p / (x * x) - 1.0).abs() < 1e-12, "{x} {p}");
+        }
+        assert!(richardson_tier_values((&coarse[6..], 48), (&fine, 96), &xs).is_none());
+    }
+
     #[test]
     fn error_estimates_recover_a_known_error() {
         // p(a) = a² exactly on the coarse mesh, 1 % high on the fine: with ratio 2 and order 1
         // the fine error estimate is |Δ| / (2 − 1) / p = 1/101 of the fine value everywhere
-        let curve = |scale: f64| -> Vec<CurvePoint> {
-            (1..=20)
-                .map(|i| {
-                    let a = 0.02 * i as f64;
-                    CurvePoint {
-                        a_over_lambda: a,
-                        p_over_estar: scale * a * a,
-                        p_over_estar_reaction: scale * a * a,
-                        slab_displacement_over_lambda: 0.0,
-                        newton_iterations: 1,
-                        active_nodes: i,
-                        contact_fraction: 2.0 * a,
-                        patches: 1,
-                    }
-                })
-                .collect()
-        };
         let (fine, coarse) = (curve(1.01), curve(1.0));
         let e = error_estimates(&fine[5..], &coarse[2..], 2.0, 1.0);
         assert!(

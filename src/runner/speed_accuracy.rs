@@ -1,6 +1,7 @@
 //! The speed–accuracy trade: for each (AR, τ_max), every tier that answers p̄/E*(a/λ) —
-//! Westergaard, WNL with a coefficient set, linear FE, finite-strain FE at several meshes — with
-//! its error against a converged reference and its cost.
+//! Westergaard, WNL with a coefficient set, linear FE, finite-strain FE at several meshes, the
+//! Richardson extrapolation of two of those meshes — with its error against a converged reference
+//! and its cost.
 //!
 //! The reference is the limit of the finite-strain curves on fine meshes (`reference_meshes`),
 //! computed once by `wavy refine-reference` into the file `reference`
@@ -21,7 +22,7 @@ use super::tier_measurement::{
 use super::scenes::{Scene, SceneContext, SceneResult};
 use super::tier_timings::{self, Timings};
 use super::RunOptions;
-use crate::accuracy::Tier;
+use crate::accuracy::{richardson_tier_values, Tier};
 use crate::fe::{convergence, Kinematics, MeshLevel};
 use crate::models::PressureLaw;
 use crate::spec::{Bounded, FeSection, Grid, Positive, SpecError, Validator};
@@ -40,7 +41,8 @@ pub struct SpeedAccuracyScene {
     /// the first to the last value of `a_over_lambda`): the FE error is largest at small a/λ, and a
     /// tolerance asked at larger a/λ is judged by its own band.
     pub error_bands: Vec<f64>,
-    /// The tiers measured, by name (`westergaard`, `wnl-<set>`, `fe-finite-N`, `fe-linear-N`).
+    /// The tiers measured, by name (`westergaard`, `wnl-<set>`, `fe-finite-N`, `fe-linear-N`,
+    /// `fe-richardson-C-F`; a Richardson tier's meshes are tiers too: its time is theirs).
     #[serde(deserialize_with = "tiers_from_names")]
     pub tiers: Vec<Tier>,
     /// Elements along the face of the finite-strain meshes whose limit is the reference, coarse
@@ -98,13 +100,7 @@ impl SpeedAccuracyScene {
     /// The FE curves of every case: the FE tiers, then the order's meshes, each once.
     fn curves(&self) -> Vec<(Kinematics, usize)> {
         let mut out: Vec<(Kinematics, usize)> = vec![];
-        let tiers = self.tiers.iter().filter_map(|t| match *t {
-            Tier::Fe {
-                kinematics,
-                elements_along_face,
-            } => Some((kinematics, elements_along_face)),
-            _ => None,
-        });
+        let tiers = self.tiers.iter().flat_map(|t| t.fe_curves());
         let order = self.order_meshes.map(|n| (Kinematics::Finite, n));
         for k in tiers.chain(order) {
             if !out.contains(&k) {
@@ -153,6 +149,22 @@ impl Scene for SpeedAccuracyScene {
                     t.name(),
                     "each tier once".into(),
                 ));
+            }
+            if let Tier::FeRichardson { coarse, fine } = *t {
+                let listed = |nx| {
+                    self.tiers.contains(&Tier::Fe {
+                        kinematics: Kinematics::Finite,
+                        elements_along_face: nx,
+                    })
+                };
+                if !(listed(coarse) && listed(fine)) {
+                    return Err(v.invalid(
+                        &format!("speed_accuracy.tiers[{i}]"),
+                        None,
+                        t.name(),
+                        format!("fe-finite-{coarse} and fe-finite-{fine} among the tiers too (the Richardson tier's time is theirs)"),
+                    ));
+                }
             }
         }
         let range = MeshLevel::ELEMENTS_ALONG_FACE;
@@ -353,6 +365,16 @@ fn curve<'a>(
         .expect("every curve of the scene is among its cases")
 }
 
+/// The unknowns and the work of an FE curve on the mesh of `nx` elements along the face.
+fn fe_cost(nx: usize, o: &FeOutcome) -> FeCost {
+    let (mx, my) = MeshLevel::along_face(nx).counts();
+    FeCost {
+        dofs: 2 * (mx + 1) * (my + 1),
+        load_steps: o.points.len(),
+        newton_iterations: o.points.iter().map(|p| p.newton_iterations).sum(),
+    }
+}
+
 /// One tier at (AR, τ_max in MPa): its cost, and its p̄/E* on the a/λ grid (none when it has
 /// no curve there: the measurement's status says why).
 fn measure(
@@ -366,23 +388,28 @@ fn measure(
 ) -> Result<(Measurement, Option<Vec<f64>>)> {
     let xs = s.a_over_lambda.values();
     let at = format!("AR = {ar}, τ_max = {tau} MPa");
-    let timing = timings.get(tier, ar, tau).with_context(|| {
-        format!(
-            "{timings_name} has no timing of tier {tier} at {at}: measure it with `wavy time-tiers` (make bench-tiers)"
-        )
-    })?;
+    let timing_of = |tier: &Tier| {
+        timings.get(tier, ar, tau).with_context(|| {
+            format!(
+                "{timings_name} has no timing of tier {tier} at {at}: measure it with `wavy time-tiers` (make bench-tiers)"
+            )
+        })
+    };
+    // a Richardson tier costs its two curves
+    let mut seconds_per_curve = 0.0;
+    let mut points_per_curve = 0;
+    for t in tier.timed_tiers() {
+        let timing = timing_of(&t)?;
+        seconds_per_curve += timing.median_seconds_per_curve;
+        points_per_curve = timing.points_per_curve;
+    }
     let (values, status, fe) = match *tier {
         Tier::Fe {
             kinematics,
             elements_along_face: nx,
         } => {
             let o = curve(s, solved, kinematics, nx, ar, tau);
-            let (mx, my) = MeshLevel::along_face(nx).counts();
-            let cost = FeCost {
-                dofs: 2 * (mx + 1) * (my + 1),
-                load_steps: o.points.len(),
-                newton_iterations: o.points.iter().map(|p| p.newton_iterations).sum(),
-            };
+            let cost = fe_cost(nx, o);
             match &o.failure {
                 Some(f) => {
                     let reached = o.last_a_over_lambda();
@@ -394,6 +421,31 @@ fn measure(
                     let v = v.with_context(|| {
                         format!("{at}: the curve of {tier} does not cover the a/λ grid")
                     })?;
+                    (Some(v), "ok".into(), Some(cost))
+                }
+            }
+        }
+        Tier::FeRichardson { coarse, fine } => {
+            let [c, f] = [coarse, fine].map(|nx| curve(s, solved, Kinematics::Finite, nx, ar, tau));
+            let (cc, fc) = (fe_cost(coarse, c), fe_cost(fine, f));
+            // the unknowns of the larger system; the work of both curves
+            let cost = FeCost {
+                dofs: fc.dofs,
+                load_steps: cc.load_steps + fc.load_steps,
+                newton_iterations: cc.newton_iterations + fc.newton_iterations,
+            };
+            match [(coarse, c), (fine, f)].iter().find(|(_, o)| o.failure.is_some()) {
+                Some((nx, o)) => {
+                    let reached = o.last_a_over_lambda();
+                    let failure = o.failure.as_ref().expect("found by its failure");
+                    let status = format!("mesh {nx} stops at a/λ = {reached:.3}: {failure}");
+                    (None, status, Some(cost))
+                }
+                None => {
+                    let v = richardson_tier_values((&c.points, coarse), (&f.points, fine), &xs)
+                        .with_context(|| {
+                            format!("{at}: the curves of {tier} do not cover the a/λ grid")
+                        })?;
                     (Some(v), "ok".into(), Some(cost))
                 }
             }
@@ -412,12 +464,12 @@ fn measure(
     };
     let seconds_per_point = tier
         .is_closed_form()
-        .then(|| timing.median_seconds_per_curve / timing.points_per_curve as f64);
+        .then(|| seconds_per_curve / points_per_curve as f64);
     let m = Measurement {
         tier: *tier,
         errors: None,
         status,
-        seconds_per_curve: timing.median_seconds_per_curve,
+        seconds_per_curve,
         seconds_per_point,
         fe,
     };
@@ -445,11 +497,17 @@ fn footer(s: &SpeedAccuracyScene, timings: &Timings, timings_name: &str) -> Vec<
             physics.friction_coefficient
         ),
         format!(
-            "Wall time per curve (closed forms: {} points) from {timings_name}:",
+            "Wall time per curve (closed forms: {} points; Richardson: both meshes) from {timings_name}:",
             xs.len()
         ),
     ];
     footer.extend(timings.describe());
+    if s.tiers.iter().any(|t| matches!(t, Tier::FeRichardson { .. })) {
+        footer.push(format!(
+            "fe-richardson-C-F: p_F + (p_F − p_C)/((F/C)^q − 1), q = {}, at each a/λ.",
+            crate::accuracy::RICHARDSON_TIER_ORDER
+        ));
+    }
     footer
 }
 

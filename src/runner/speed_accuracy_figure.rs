@@ -28,6 +28,14 @@ pub(super) fn figure_panels(
         })
         .collect();
     let fe_label = format!("FE finite strain, mesh {}", finite_meshes.join(", "));
+    let richardson_pairs: Vec<String> = tiers
+        .iter()
+        .filter_map(|t| match t {
+            Tier::FeRichardson { coarse, fine } => Some(format!("{coarse}+{fine}")),
+            _ => None,
+        })
+        .collect();
+    let richardson_label = format!("FE Richardson, meshes {}", richardson_pairs.join(", "));
     let family = |t: &Tier| match t {
         Tier::Westergaard => ("Westergaard", palette::BLACK),
         Tier::Wnl(crate::models::CoefficientSet::PaperTable1) => {
@@ -39,6 +47,7 @@ pub(super) fn figure_panels(
             ..
         } => ("FE linear", palette::PURPLE),
         Tier::Fe { .. } => (fe_label.as_str(), palette::BLUE),
+        Tier::FeRichardson { .. } => (richardson_label.as_str(), palette::VERMILION),
     };
     let mut panels = vec![];
     let mut failed_cases = vec![];

@@ -7,7 +7,7 @@ use super::fe_cases::{FeCase, FePhysics};
 use super::input::{a_over_lambda_in_range, out_of_range, InputError};
 use super::request_error::RequestError;
 use crate::accuracy::measured::{self, Choice, ChoiceError, Query};
-use crate::accuracy::Tier;
+use crate::accuracy::{richardson_tier_values, Tier};
 use crate::fe::{self, Kinematics, MeshLevel};
 use crate::models::PressureLaw;
 
@@ -97,7 +97,8 @@ pub fn eval_tier(
 }
 
 /// `wavy eval --tolerance`, second half: the (a/λ, p̄/E*, extrapolated) rows of every a/λ of
-/// `xs` by `tier` (a closed form, or one FE curve up to the largest a/λ).
+/// `xs` by `tier` (a closed form, or its FE curves up to the largest a/λ: one, or a Richardson
+/// tier's two).
 pub fn eval_with_tier(
     tier: Tier,
     aspect_ratio: f64,
@@ -122,23 +123,35 @@ pub fn eval_with_tier(
         return Ok(rows);
     }
     let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let options = fe::SolveOptions {
-        until_a_over_lambda: hi,
-        mesh: tier.mesh().expect("an FE tier has a mesh"),
-        ..fe::SolveOptions::default()
-    };
-    let physics = FePhysics {
-        kinematics: match tier {
-            Tier::Fe { kinematics, .. } => kinematics,
-            _ => Kinematics::Finite,
-        },
-        ..FePhysics::default()
-    };
-    let case = FeCase::new(&physics, aspect_ratio, tau_max_mpa, options);
-    let curve = fe::solve_curve(&case.problem, &case.options, &mut |_| {})
-        .map_err(|f| RequestError::Failed(format!("{inputs}: the solver stopped: {}", f.error)))?;
+    let mut curves = vec![];
+    for (kinematics, nx) in tier.fe_curves() {
+        let options = fe::SolveOptions {
+            until_a_over_lambda: hi,
+            mesh: MeshLevel::along_face(nx),
+            ..fe::SolveOptions::default()
+        };
+        let physics = FePhysics {
+            kinematics,
+            ..FePhysics::default()
+        };
+        let case = FeCase::new(&physics, aspect_ratio, tau_max_mpa, options);
+        let curve = fe::solve_curve(&case.problem, &case.options, &mut |_| {}).map_err(|f| {
+            RequestError::Failed(format!(
+                "{inputs}: the solver stopped on mesh {nx}: {}",
+                f.error
+            ))
+        })?;
+        curves.push((curve.points, nx));
+    }
     for &x in xs {
-        let p = curve.p_at(x).ok_or_else(|| {
+        let p = match curves.as_slice() {
+            [(points, _)] => fe::convergence::p_at(points, x),
+            [(coarse, nc), (fine, nf)] => {
+                richardson_tier_values((coarse, *nc), (fine, *nf), &[x]).map(|v| v[0])
+            }
+            _ => unreachable!("an FE tier has one or two curves"),
+        };
+        let p = p.ok_or_else(|| {
             RequestError::Failed(format!(
                 "{inputs} --a-over-lambda {x:?}: below the first contact point of the FE curve"
             ))
