@@ -97,10 +97,10 @@ pub fn series_times(steps: &[VtkStep]) -> Vec<f64> {
 /// reference position, 3 components, z = 0), `reference_position_over_lambda` (3 components),
 /// and on the contact face (0 elsewhere) `in_contact` (0/1), `contact_pressure_over_estar` and
 /// `contact_shear_over_estar` (nodal force over tributary length of the deformed face, over
-/// E*; shear along the indenter's tangent), `slip_over_lambda` (slip since touching,
-/// [`StepState::face_slip_over_lambda`]); cell data `J` (current over reference area of each
-/// quad, the mean dilatation of the Q1/P0 element). Files of an earlier series in `dir` that
-/// this one does not overwrite stay, unlisted.
+/// E*; shear along the indenter's tangent, 0 on the symmetry lines), `slip_over_lambda` (slip
+/// since touching, [`StepState::face_slip_over_lambda`]); cell data `J` (current over reference
+/// area of each quad, the mean dilatation of the Q1/P0 element). Files of an earlier series in
+/// `dir` that this one does not overwrite stay, unlisted.
 pub fn write_series(dir: &Path, steps: &[VtkStep]) -> Result<Vec<PathBuf>, VtkError> {
     std::fs::create_dir_all(dir).map_err(|source| VtkError::Folder {
         dir: dir.to_path_buf(),

@@ -195,6 +195,35 @@ fn series_reads_back_with_vtkio() {
     assert!(last.face_slip_over_lambda.iter().any(|&s| s != 0.0));
 }
 
+/// The face shear is a friction traction: at most τ_max on every face node (the slip threshold
+/// `min(μ N, τ_max ℓ)` over the same tributary length ℓ), and zero on the symmetry lines, where
+/// the node's tangential force is the symmetry plane's reaction and no friction.
+#[test]
+fn face_shear_is_bounded_by_the_shear_strength_and_zero_on_symmetry_lines() {
+    let (_, steps) = loading();
+    let Interface::CoulombOrowan(law) = problem().interface else {
+        panic!("a frictional problem");
+    };
+    let mut largest: f64 = 0.0;
+    for step in steps {
+        let tau = &step.state.deformed.contact_shear_over_estar;
+        assert_eq!((tau[0], tau[tau.len() - 1]), (0.0, 0.0));
+        largest = largest.max(tau.iter().fold(0.0, |m, t| m.max(t.abs())));
+    }
+    println!(
+        "largest |τ|/E* on the face {largest:e}, τ_max/E* {}",
+        law.tau_max_over_estar
+    );
+    assert!(
+        largest <= law.tau_max_over_estar * (1.0 + 1e-9),
+        "{largest:e}"
+    );
+    assert!(
+        largest >= 0.5 * law.tau_max_over_estar,
+        "{largest:e}: friction acts"
+    );
+}
+
 /// The face tractions read back from each `.vtu` integrate to the point's `p̄/E*`: the vertical
 /// component of the traction `(p + y_s' τ)/w` (normal `(−y_s', 1)/w`, tangent `(1, y_s')/w`)
 /// times each face node's tributary length on the deformed face (half of each adjacent chord,

@@ -105,8 +105,8 @@ pub struct DeformedState {
     /// over the node's tributary length on the deformed face (0 on free nodes).
     pub contact_pressure_over_estar: Vec<f64>,
     /// Tangential contact traction `τ/E*` per contact-face node along the indenter's
-    /// tangent `(1, y_s')/w` (the friction traction; 0 when frictionless and on free
-    /// nodes).
+    /// tangent `(1, y_s')/w` (the friction traction; 0 when frictionless, on free nodes and
+    /// on the symmetry lines).
     pub contact_shear_over_estar: Vec<f64>,
 }
 

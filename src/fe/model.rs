@@ -417,9 +417,18 @@ impl Model {
         self.contact_forces(st, grad).iter().map(|f| f[0]).collect()
     }
 
-    /// Tangential contact force `T` of every contact-face node (`Self::contact_forces`).
+    /// Tangential contact force `T` of every contact-face node (`Self::contact_forces`); 0 on
+    /// a symmetry line, where the friction traction is antisymmetric and the node's tangential
+    /// force is the reaction of the symmetry plane (`x = X`) instead.
     pub fn tangential_forces(&self, st: &State, grad: &[f64]) -> Vec<f64> {
-        self.contact_forces(st, grad).iter().map(|f| f[1]).collect()
+        self.contact_forces(st, grad)
+            .iter()
+            .zip(&self.mesh.bottom)
+            .map(|(f, &n)| match self.role[n] {
+                Role::BottomCorner => 0.0,
+                _ => f[1],
+            })
+            .collect()
     }
 
     /// Friction threshold `L = min(μ N, τ_max ℓ)` of every active contact-face node (units
