@@ -63,11 +63,6 @@ fn face_mesh(n: usize) -> MeshLevel {
     MeshLevel::Elements { nx: n, ny: n / 2 }
 }
 
-fn dofs(mesh: MeshLevel) -> usize {
-    let (nx, ny) = mesh.counts();
-    2 * (nx + 1) * (ny + 1)
-}
-
 /// Child mode (`AR,τ,N`): one curve, then `seconds steps assemblies factorisations kB`.
 fn child(spec: &str) -> ! {
     let v: Vec<f64> = spec
@@ -155,7 +150,7 @@ fn per_curve_table(runs: usize) {
             println!(
                 "| {ar} | {t} | {:.2} | {} | {} | {} | {} | {} |",
                 walls[i],
-                dofs(MeshLevel::Default),
+                MeshLevel::Default.unknowns(),
                 c.points.len(),
                 c.points.iter().map(|p| p.newton_iterations).sum::<usize>(),
                 c.work.tangent_assemblies,
@@ -222,7 +217,7 @@ fn cost_growth(max_mesh: usize) {
                 .split_whitespace()
                 .map(|x| x.parse().expect("child output"))
                 .collect();
-            let d = dofs(face_mesh(n)) as f64;
+            let d = face_mesh(n).unknowns() as f64;
             println!(
                 "| {tau} | {n} | {d} | {:.2} | {} | {} | {} | {:.2e} | {:.1} |",
                 v[0],

@@ -66,6 +66,13 @@ impl MeshLevel {
             MeshLevel::Elements { nx, ny } => (nx, ny),
         }
     }
+
+    /// Displacement unknowns of the mesh, two per node (before the boundary and contact
+    /// constraints): the size that cost tables report.
+    pub fn unknowns(self) -> usize {
+        let (nx, ny) = self.counts();
+        2 * (nx + 1) * (ny + 1)
+    }
 }
 
 /// A mesh resolution that is not one of the names or an element count in range.

@@ -271,10 +271,9 @@ impl PreparedSolve {
     }
 
     fn outcome(&self, rows: Vec<SolveRow>, work: SolveWork) -> SolveOutcome {
-        let (nx, ny) = self.mesh().counts();
         SolveOutcome {
             mesh: self.mesh(),
-            unknowns: 2 * (nx + 1) * (ny + 1),
+            unknowns: self.mesh().unknowns(),
             extra: self.extra_column(),
             rows,
             work,

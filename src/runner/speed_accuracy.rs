@@ -367,9 +367,8 @@ fn curve<'a>(
 
 /// The unknowns and the work of an FE curve on the mesh of `nx` elements along the face.
 fn fe_cost(nx: usize, o: &FeOutcome) -> FeCost {
-    let (mx, my) = MeshLevel::along_face(nx).counts();
     FeCost {
-        dofs: 2 * (mx + 1) * (my + 1),
+        dofs: MeshLevel::along_face(nx).unknowns(),
         load_steps: o.points.len(),
         newton_iterations: o.points.iter().map(|p| p.newton_iterations).sum(),
     }
@@ -396,13 +395,12 @@ fn measure(
         })
     };
     // a Richardson tier costs its two curves
-    let mut seconds_per_curve = 0.0;
-    let mut points_per_curve = 0;
-    for t in tier.timed_tiers() {
-        let timing = timing_of(&t)?;
-        seconds_per_curve += timing.median_seconds_per_curve;
-        points_per_curve = timing.points_per_curve;
-    }
+    let timed = tier
+        .timed_tiers()
+        .iter()
+        .map(timing_of)
+        .collect::<Result<Vec<_>>>()?;
+    let seconds_per_curve: f64 = timed.iter().map(|t| t.median_seconds_per_curve).sum();
     let (values, status, fe) = match *tier {
         Tier::Fe {
             kinematics,
@@ -464,7 +462,7 @@ fn measure(
     };
     let seconds_per_point = tier
         .is_closed_form()
-        .then(|| seconds_per_curve / points_per_curve as f64);
+        .then(|| seconds_per_curve / timed[0].points_per_curve as f64);
     let m = Measurement {
         tier: *tier,
         errors: None,

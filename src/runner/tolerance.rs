@@ -141,17 +141,16 @@ pub fn eval_with_tier(
                 f.error
             ))
         })?;
-        curves.push((curve.points, nx));
+        curves.push(curve.points);
     }
+    let p_at = |x: f64| match tier {
+        Tier::FeRichardson { coarse, fine } => {
+            richardson_tier_values((&curves[0], coarse), (&curves[1], fine), &[x]).map(|v| v[0])
+        }
+        _ => fe::convergence::p_at(&curves[0], x),
+    };
     for &x in xs {
-        let p = match curves.as_slice() {
-            [(points, _)] => fe::convergence::p_at(points, x),
-            [(coarse, nc), (fine, nf)] => {
-                richardson_tier_values((coarse, *nc), (fine, *nf), &[x]).map(|v| v[0])
-            }
-            _ => unreachable!("an FE tier has one or two curves"),
-        };
-        let p = p.ok_or_else(|| {
+        let p = p_at(x).ok_or_else(|| {
             RequestError::Failed(format!(
                 "{inputs} --a-over-lambda {x:?}: below the first contact point of the FE curve"
             ))
