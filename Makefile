@@ -1,5 +1,7 @@
 # wavy — every figure and number from experiments/*.toml.
-# Needs only cargo (the toolchain is pinned in rust-toolchain.toml); crates come from crates.io.
+# `make reproduce` needs cargo (the toolchain is pinned in rust-toolchain.toml; crates come from crates.io);
+# `make test` also needs python3 with its venv module (the Python package's tests install maturin, pytest and
+# numpy from PyPI into target/python-venv).
 
 CARGO ?= cargo
 export CARGO_TERM_COLOR ?= never
@@ -15,9 +17,11 @@ reproduce:
 	$(CARGO) run --release --locked --quiet -- reproduce
 
 ## Every test (release mode: the finite-element tests need it), after formatting and lints; then the
-## Python package's tests.
+## Python package's tests. `--tests`: the library's and the binary's unit tests and the integration tests
+## (tests/<concern>/main.rs, one binary per concern); the examples and benches are compiled by clippy in
+## `lint`, and the crate has no doctests (its code blocks are `text`).
 test: lint
-	INSTA_UPDATE=no $(CARGO) test --release --locked
+	INSTA_UPDATE=no $(CARGO) test --release --locked --tests
 	$(MAKE) python-test
 
 ## The Python package (python/, docs/python.md): a virtual environment in target/ with maturin, pytest and
@@ -27,15 +31,19 @@ PYTHON ?= python3
 VENV ?= target/python-venv
 python-test:
 	$(CARGO) build --release --locked
-	$(CARGO) clippy --release --locked -p wavy-python --quiet -- -D warnings
 	test -x $(VENV)/bin/python || $(PYTHON) -m venv $(VENV)
 	$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check "maturin>=1.16,<1.17" pytest numpy
 	PATH="$(CURDIR)/$(VENV)/bin:$$PATH" $(VENV)/bin/python -m pip install --quiet --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python
 	cd python/tests && ../../$(VENV)/bin/python -m pytest -q -p no:cacheprovider
 
+## Formatting of every Rust file (rustfmt on each file too, so that no module escapes `cargo fmt`),
+## then clippy over every target of the workspace, the Python bindings included.
+RUST_FILES = $(shell git ls-files --cached --others --exclude-standard '*.rs' 2>/dev/null || find src tests benches examples python/src -name '*.rs')
 lint:
-	$(CARGO) fmt --check
-	$(CARGO) clippy --release --locked --all-targets --quiet -- -D warnings
+	$(CARGO) fmt --all --check
+	@echo 'rustfmt --check --edition 2021 <every Rust file git knows>'
+	@rustfmt --check --edition 2021 $(RUST_FILES)
+	$(CARGO) clippy --release --locked --workspace --all-targets --quiet -- -D warnings
 
 ## Recompute every spec and compare with expected/ within each spec's [check] tolerances.
 check:
@@ -51,7 +59,7 @@ bless:
 	cp figures/*.csv expected/
 	$(CARGO) run --release --locked --quiet -- reproduce
 	cp figures/*.csv expected/
-	INSTA_UPDATE=always $(CARGO) test --release --locked --test snapshots --test speed_accuracy
+	INSTA_UPDATE=always $(CARGO) test --release --locked --test scenes
 	@echo "changed by bless:"; git status --short -- figures expected tests/snapshots
 
 ## Fails, naming the files, when a committed figure or golden table is not what the code computes now
@@ -95,7 +103,7 @@ reference:
 
 ## The property and fuzz suites with 10⁶ cases each (make test runs 10⁴); WAVY_FUZZ_SEED picks another seed.
 fuzz:
-	WAVY_FUZZ_CASES=1000000 $(CARGO) test --release --locked --test extremes_models --test fuzz_specs -- --nocapture
+	WAVY_FUZZ_CASES=1000000 $(CARGO) test --release --locked --test models --test scenes -- --nocapture extremes_models fuzz_specs
 	WAVY_FUZZ_CASES=1000000 $(CARGO) test --release --locked --bin wavy -- --nocapture
 
 clean:

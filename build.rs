@@ -1,6 +1,7 @@
 //! Build-time inputs:
-//! - fingerprints the finite-element solver's source, so that cached FE results are keyed by the
-//!   exact solver that computed them (`WAVY_FE_SOURCE_SHA256`, read by `runner::fe_cases`);
+//! - fingerprints the finite-element solver's source (`src/fe/` and every module it imports,
+//!   found by rule), so that cached FE results are keyed by the exact solver that computed them
+//!   (`WAVY_FE_SOURCE_SHA256`, read by `runner::sweep::fe_cases`);
 //! - turns the golden refit of Table 1, `expected/table1_refit.csv` (written by
 //!   `experiments/table1_refit.toml`, blessed by `make bless`), into the refit coefficient sets
 //!   `ours-bracket-sq|2x|literal` (`$OUT_DIR/refit_coefficient_sets.rs`, included by
@@ -40,12 +41,14 @@ fn measured_accuracy() {
     std::fs::write(&dest, out).expect("OUT_DIR is writable");
 }
 
+/// Fingerprints every source file the finite-element solver compiles from: all of `src/fe/`,
+/// and, by rule, every module of the crate that those files name by a `crate::` path, and every
+/// module those name in turn (today `src/profile.rs`). The files, sorted, are hashed with their
+/// paths (`WAVY_FE_SOURCE_SHA256`) and listed (`WAVY_FE_SOURCE_FILES`, which
+/// `tests/house.rs` checks against the solver's imports).
 fn fingerprint_solver() {
-    let dir = Path::new("src/fe");
     println!("cargo:rerun-if-changed=src/fe");
-    let mut files = vec![];
-    collect(dir, &mut files);
-    files.sort();
+    let files = solver_sources();
     let mut h = Sha256::new();
     for f in &files {
         println!("cargo:rerun-if-changed={}", f.display());
@@ -54,8 +57,63 @@ fn fingerprint_solver() {
     }
     let hex: String = h.finalize().iter().map(|b| format!("{b:02x}")).collect();
     println!("cargo:rustc-env=WAVY_FE_SOURCE_SHA256={hex}");
+    let listed: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+    println!("cargo:rustc-env=WAVY_FE_SOURCE_FILES={}", listed.join(","));
 }
 
+/// The files of `src/fe/` and of every top-level module they reach through `crate::` paths,
+/// transitively, sorted.
+fn solver_sources() -> Vec<std::path::PathBuf> {
+    let mut modules = std::collections::BTreeSet::from(["fe".to_string()]);
+    let mut pending = vec!["fe".to_string()];
+    let mut files = std::collections::BTreeSet::new();
+    while let Some(module) = pending.pop() {
+        for file in module_files(&module) {
+            let text = std::fs::read_to_string(&file).expect("readable solver source");
+            for named in crate_modules_named(&text) {
+                if modules.insert(named.clone()) {
+                    pending.push(named);
+                }
+            }
+            files.insert(file);
+        }
+    }
+    files.into_iter().collect()
+}
+
+/// The files of a top-level module: `src/<m>.rs`, or every `.rs` file under `src/<m>/`.
+fn module_files(module: &str) -> Vec<std::path::PathBuf> {
+    let file = Path::new("src").join(format!("{module}.rs"));
+    if file.exists() {
+        return vec![file];
+    }
+    let mut files = vec![];
+    collect(&Path::new("src").join(module), &mut files);
+    files
+}
+
+/// The top-level modules a source text names as `crate::<m>` outside `//` comments (a
+/// comment's mention does not compile in).
+fn crate_modules_named(text: &str) -> Vec<String> {
+    let mut named = vec![];
+    for line in text.lines() {
+        let mut rest = line.split("//").next().unwrap_or("");
+        while let Some(i) = rest.find("crate::") {
+            let after = &rest[i + "crate::".len()..];
+            let name: String = after
+                .chars()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                .collect();
+            if !name.is_empty() {
+                named.push(name);
+            }
+            rest = after;
+        }
+    }
+    named
+}
+
+/// Every `.rs` file under `dir`, recursively.
 fn collect(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
     if let Ok(entries) = std::fs::read_dir(dir) {
         for e in entries.flatten() {

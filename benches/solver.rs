@@ -9,6 +9,7 @@
 //! Run: `cargo bench --bench solver` (criterion reports the median of the samples).
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
+use std::ops::ControlFlow;
 mod common;
 use common::peak_memory_kb;
 use wavy::fe::*;
@@ -33,7 +34,7 @@ fn frictional_curve(ar: f64, kin: Kinematics, mesh: MeshLevel, tau_max_over_esta
         mesh,
         ..Default::default()
     };
-    solve_curve(&pb, &opts, &mut |_| {})
+    solve_curve(&pb, &opts, &mut |_| ControlFlow::Continue(()))
         .expect("curve")
         .points
         .len()

@@ -3,6 +3,7 @@
 //! PEAK (grading peak_ratio), FIRST (first_layer_over_dx), RULE (fraction|power|periodic), KIN (finite|linear),
 //! DUMP (print the curves), PRED (tangent|extrap), PHI_CALIB (calibrate `DISCRETE_EDGE_FRACTION` instead),
 //! ASPECT_CALIB (calibrate `EDGE_FRACTION_BY_ASPECT` instead).
+use std::ops::ControlFlow;
 use std::time::Instant;
 use wavy::fe::*;
 
@@ -42,7 +43,7 @@ fn calibrate(levels: &[usize], ny_over_nx: f64, opts: &SolveOptions) {
                 edge_rule: EdgeRule::Fraction(phi),
                 ..*opts
             };
-            solve_curve(&pb, &o, &mut |_| {})
+            solve_curve(&pb, &o, &mut |_| ControlFlow::Continue(()))
                 .expect("linear curve")
                 .points
         };
@@ -94,7 +95,7 @@ fn calibrate_aspect() {
                 edge_rule,
                 ..SolveOptions::default()
             };
-            solve_curve(&pb, &o, &mut |_| {})
+            solve_curve(&pb, &o, &mut |_| ControlFlow::Continue(()))
                 .expect("linear curve")
                 .points
         };
@@ -180,7 +181,7 @@ fn main() {
             ..opts
         };
         let t = Instant::now();
-        let r = solve_curve(&pb, &o, &mut |_| {});
+        let r = solve_curve(&pb, &o, &mut |_| ControlFlow::Continue(()));
         let el = t.elapsed().as_secs_f64();
         let pts = match r {
             Ok(c) => c.points,

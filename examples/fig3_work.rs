@@ -10,6 +10,7 @@
 //! (`SolveOptions::semismooth_friction`); `--points FILE` writes every point
 //! (`AR τ a/λ p̄/E*`, 13 significant digits) to compare two builds' curves.
 use rayon::prelude::*;
+use std::ops::ControlFlow;
 use std::path::Path;
 use wavy::fe::{solve_curve, SolveOptions};
 use wavy::runner::{load_spec, RunOptions};
@@ -36,10 +37,12 @@ fn main() {
                 semismooth_friction,
                 ..case.options
             };
-            solve_curve(&case.problem, &opts, &mut |_| {}).unwrap_or_else(|f| {
-                let ar = case.problem.aspect_ratio;
-                panic!("AR {ar}, τ_max {} MPa: {}", case.tau_max_mpa, f.error)
-            })
+            solve_curve(&case.problem, &opts, &mut |_| ControlFlow::Continue(())).unwrap_or_else(
+                |f| {
+                    let ar = case.problem.aspect_ratio;
+                    panic!("AR {ar}, τ_max {} MPa: {}", case.tau_max_mpa, f.error)
+                },
+            )
         })
         .collect();
     println!("| AR | τ_max (MPa) | tangent assemblies | factorisations |");

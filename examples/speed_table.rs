@@ -15,13 +15,14 @@
 //! `--no-branch-switch` measures steps 1 and 3 without the semismooth choice of the
 //! friction branches (`SolveOptions::semismooth_friction` off): the same build with and
 //! without it.
+use std::ops::ControlFlow;
 use std::path::PathBuf;
 use std::time::Instant;
 #[path = "../benches/common/mod.rs"]
 mod common;
 use common::peak_memory_kb;
 use wavy::fe::{solve_curve, Curve, Interface, Kinematics, LayerProblem, MeshLevel, SolveOptions};
-use wavy::runner::time_tiers::median;
+use wavy::runner::scenes::speed_accuracy::time_tiers::median;
 
 const CHILD: &str = "WAVY_SPEED_TABLE_CHILD";
 
@@ -53,8 +54,10 @@ fn options(mesh: MeshLevel) -> SolveOptions {
 /// Wall time (s) and the curve.
 fn timed_curve(ar: f64, tau: f64, mesh: MeshLevel) -> (f64, Curve) {
     let start = Instant::now();
-    let curve = solve_curve(&problem(ar, tau), &options(mesh), &mut |_| {})
-        .unwrap_or_else(|f| panic!("AR {ar}, τ_max/E* {tau}, {mesh:?}: {}", f.error));
+    let curve = solve_curve(&problem(ar, tau), &options(mesh), &mut |_| {
+        ControlFlow::Continue(())
+    })
+    .unwrap_or_else(|f| panic!("AR {ar}, τ_max/E* {tau}, {mesh:?}: {}", f.error));
     (start.elapsed().as_secs_f64(), curve)
 }
 
@@ -71,7 +74,9 @@ fn child(spec: &str) -> ! {
         .collect();
     let mesh = face_mesh(v[2] as usize);
     let start = Instant::now();
-    let c = match solve_curve(&problem(v[0], v[1]), &options(mesh), &mut |_| {}) {
+    let c = match solve_curve(&problem(v[0], v[1]), &options(mesh), &mut |_| {
+        ControlFlow::Continue(())
+    }) {
         Ok(c) => c,
         Err(f) => {
             println!("failed: {}", f.error);

@@ -1,6 +1,6 @@
 //! wavy: the contact area of a soft solid on a rigid wavy surface.
 //!
-//! Layers, each using only the ones above it in this list (`tests/layers.rs` enforces it;
+//! Layers, each using only the ones above it in this list (`tests/house/layers.rs` enforces it;
 //! `docs/architecture.md` draws it):
 //! - the core, with no I/O: [`models`] (Westergaard and the WNL model, their coefficient sets
 //!   and inverse), [`fe`] (the finite-strain finite-element solver), [`fit`] (re-deriving

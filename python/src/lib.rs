@@ -13,11 +13,11 @@ use std::path::PathBuf;
 use std::str::FromStr;
 use wavy::fe::{Kinematics, LoadDirection};
 use wavy::models::{CoefficientSet, ModelKind, Reading};
-use wavy::runner::eval_request::LawRequest;
-use wavy::runner::input::{self, out_of_range, InputError};
-use wavy::runner::request_error::{full_message, RequestError};
-use wavy::runner::solve_outcome::{ExtraColumn, SolveOutcome};
-use wavy::runner::solve_request::{self, SolveRequest};
+use wavy::runner::requests::eval_request::LawRequest;
+use wavy::runner::requests::input_checks::{self, out_of_range, InputError};
+use wavy::runner::requests::request_error::{full_message, RequestError};
+use wavy::runner::requests::solve_outcome::{Column, SolveOutcome};
+use wavy::runner::requests::solve_request::{self, SolveRequest};
 
 /// An input error as `ValueError`, any other failure as `RuntimeError`, with the command
 /// line's message (what `wavy` prints after `error: `).
@@ -100,28 +100,15 @@ fn law<'py>(
 /// The columns and metadata of an outcome, as a dict (`wavy.Result` wraps it).
 fn outcome_dict<'py>(py: Python<'py>, o: &SolveOutcome) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    let column = |f: fn(&wavy::fe::CurvePoint) -> f64| {
-        PyArray1::from_iter(py, o.rows.iter().map(|r| f(&r.point)))
-    };
-    d.set_item("a_over_lambda", column(|p| p.a_over_lambda))?;
-    d.set_item("p_over_estar", column(|p| p.p_over_estar))?;
-    d.set_item("p_over_estar_reaction", column(|p| p.p_over_estar_reaction))?;
-    d.set_item(
-        "slab_displacement_over_lambda",
-        column(|p| p.slab_displacement_over_lambda),
-    )?;
-    let count = |f: fn(&wavy::fe::CurvePoint) -> usize| {
-        PyArray1::from_iter(py, o.rows.iter().map(|r| f(&r.point) as i64))
-    };
-    d.set_item("newton_iterations", count(|p| p.newton_iterations))?;
-    d.set_item("active_nodes", count(|p| p.active_nodes))?;
-    d.set_item("contact_fraction", column(|p| p.contact_fraction))?;
-    d.set_item("patches", count(|p| p.patches))?;
-    let branches: Vec<&str> = o.rows.iter().map(|r| r.branch.name()).collect();
-    d.set_item("branch", branches)?;
-    if o.extra == ExtraColumn::ErrorEstimate {
-        let estimates = o.rows.iter().map(|r| r.error_estimate.unwrap_or(f64::NAN));
-        d.set_item("error_estimate", PyArray1::from_iter(py, estimates))?;
+    for (name, column) in o.columns() {
+        match column {
+            Column::Real(v) => d.set_item(name, PyArray1::from_vec(py, v))?,
+            Column::Count(v) => d.set_item(
+                name,
+                PyArray1::from_iter(py, v.into_iter().map(|c| c as i64)),
+            )?,
+            Column::Name(v) => d.set_item(name, v)?,
+        }
     }
     d.set_item("mesh", o.mesh.counts())?;
     d.set_item("unknowns", o.unknowns)?;
@@ -177,25 +164,11 @@ fn solve<'py>(
     // `profile` (the command line's --profile) instead of `ar` (its shorthand --ar)
     let (ar, finer_harmonics) = match profile {
         Some(text) => {
-            let p: wavy::profile::Profile =
-                text.parse().map_err(|e: wavy::profile::ProfileError| {
-                    input_err(InputError::Refused {
-                        flag: "--profile".into(),
-                        value: text.into(),
-                        reason: e.to_string(),
-                    })
-                })?;
+            let p = input_checks::profile(text).map_err(input_err)?;
             (p.aspect_ratio, p.finer)
         }
         None => (ar, wavy::profile::FinerHarmonics::NONE),
     };
-    if let (Some(m), Some(_)) = (mesh, tolerance) {
-        return Err(input_err(InputError::Refused {
-            flag: "--mesh".into(),
-            value: m.into(),
-            reason: "cannot be used with --tolerance (which chooses the mesh)".into(),
-        }));
-    }
     let request = SolveRequest {
         tau_max_mpa,
         mu,
@@ -207,10 +180,10 @@ fn solve<'py>(
             kinematics,
             &Kinematics::ALL.map(Kinematics::name),
         )?,
-        mesh: match mesh {
-            Some(m) => input::mesh(m).map_err(input_err)?,
-            None => SolveRequest::new(ar).mesh,
-        },
+        mesh: mesh
+            .map(input_checks::mesh)
+            .transpose()
+            .map_err(input_err)?,
         tolerance,
         error_estimate,
         until_a_over_lambda,

@@ -103,7 +103,7 @@ def test_a_bad_mesh_names_the_flag_as_the_cli_does():
 
 
 def test_a_solve_that_stops_raises_solve_error_with_the_converged_part():
-    # mesh 4 resolves no contact edge beyond a/λ ≈ 0.44 (tests/fe_extremes.rs: a target beyond the mesh)
+    # mesh 4 resolves no contact edge beyond a/λ ≈ 0.44 (tests/solver/fe_extremes.rs: a target beyond the mesh)
     rc, out, err = cli("solve", "--ar", 0.1, "--mesh", 4)
     assert rc == 1
     rows = list(csv.DictReader(io.StringIO(out)))

@@ -166,7 +166,7 @@ def solve(
     tau_max_mpa: float = 0.0,
     mesh: Union[None, int, str] = None,
     tolerance: Optional[float] = None,
-    until_a_over_lambda: float = 0.45,
+    until_a_over_lambda: Optional[float] = None,
     until_p_over_estar: Optional[float] = None,
     unload: bool = False,
     error_estimate: bool = False,
@@ -183,8 +183,8 @@ def solve(
 
     ``mesh``: "coarse", "default", "fine" or N elements along the contact face (default
     "default"); ``tolerance`` instead chooses the coarsest mesh whose measured error meets it.
-    ``mu``, ``estar_mpa``, ``kappa_over_g``, ``thickness_over_lambda``: None takes the command
-    line's default. The GIL is released while solving; Ctrl-C stops the solve after the
+    ``mu``, ``estar_mpa``, ``kappa_over_g``, ``thickness_over_lambda``, ``until_a_over_lambda``:
+    None takes the command line's default (``wavy._wavy.SOLVE_DEFAULTS``). The GIL is released while solving; Ctrl-C stops the solve after the
     current load step (``KeyboardInterrupt``). ``vtk``: a folder that receives the deformed
     state of every converged point as a ParaView time series (``series.pvd`` and one
     ``step_NNNN.vtu`` per point), as ``wavy solve --vtk``; written only for a complete curve.
@@ -215,7 +215,9 @@ def solve(
         mesh=None if mesh is None else str(mesh),
         tolerance=None if tolerance is None else float(tolerance),
         error_estimate=bool(error_estimate),
-        until_a_over_lambda=float(until_a_over_lambda),
+        until_a_over_lambda=float(
+            defaults["until_a_over_lambda"] if until_a_over_lambda is None else until_a_over_lambda
+        ),
         until_p_over_estar=None if until_p_over_estar is None else float(until_p_over_estar),
         unload=bool(unload),
         vtk=None if vtk is None else str(vtk),

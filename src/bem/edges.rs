@@ -15,7 +15,7 @@
 //! - shorter, or when a fit has no root between one grid step inside and two outside the last
 //!   contact point: halfway between the last contact point and the first open one.
 //!
-//! Measured against Westergaard (`src/bem/tests.rs`), the edge is then within a few hundredths of
+//! Measured against Westergaard (`src/bem/solver_tests.rs`), the edge is then within a few hundredths of
 //! a grid step of the exact one at every grid (halfway: up to 0.5): still first order in `1/N`,
 //! as the discrete solution itself is, with a constant more than ten times smaller.
 

@@ -29,7 +29,7 @@
 //! for a single sinusoid, Westergaard's full contact). At and beyond `p̄_full` the contact is
 //! full and nothing is left to solve; [`solve`] refuses it.
 //!
-//! # Accuracy (measured, `src/bem/tests.rs`)
+//! # Accuracy (measured, `src/bem/solver_tests.rs`)
 //!
 //! Against Westergaard's single sinusoid (`a/λ` = 0.07, 0.19, 0.33) the contact fraction is off by
 //! at most 3.8e-5, 9.3e-6, 3.3e-6 at N = 1024, 4096, 16384: first order in `1/N` (observed 0.9),
@@ -43,7 +43,7 @@ mod edges;
 mod grid;
 mod polonsky_keer;
 #[cfg(test)]
-mod tests;
+mod solver_tests;
 
 pub use compliance::{
     half_plane_compliance, layer_compliance, layer_compliance_deficit, layer_to_half_plane_ratio,

@@ -77,22 +77,8 @@ pub(super) fn solve(
             k_op.apply(&p, &mut u);
             u_state = DisplacementState::Fresh;
         }
-        let (mut sum, mut count) = (0.0, 0usize);
-        for (((gi, &ui), &si), &pi) in g.iter_mut().zip(&u).zip(s).zip(&p) {
-            *gi = ui + si;
-            if pi > 0.0 {
-                sum += *gi;
-                count += 1;
-            }
-        }
-        // mean(p) = p̄ > 0, so count ≥ 1
-        let approach = sum / count as f64;
-        residual = 0.0;
-        for (gi, &pi) in g.iter_mut().zip(&p) {
-            *gi -= approach;
-            let violation = if pi > 0.0 { gi.abs() } else { -*gi };
-            residual = residual.max(violation);
-        }
+        let (approach, count, max_violation) = gap_and_residual(&mut g, &u, s, &p);
+        residual = max_violation;
         if !residual.is_finite() {
             break;
         }
@@ -109,70 +95,19 @@ pub(super) fn solve(
             });
         }
 
-        // conjugate direction on the contact set
-        let g_norm: f64 = g
-            .iter()
-            .zip(&p)
-            .filter(|(_, &pi)| pi > 0.0)
-            .map(|(gi, _)| gi * gi)
-            .sum();
-        let beta = if conjugate { g_norm / g_norm_old } else { 0.0 };
-        g_norm_old = g_norm;
-        for ((ti, &gi), &pi) in t.iter_mut().zip(&g).zip(&p) {
-            *ti = if pi > 0.0 { gi + beta * *ti } else { 0.0 };
-        }
+        g_norm_old = conjugate_direction(&mut t, &g, &p, conjugate, g_norm_old);
         k_op.apply(&t, &mut r);
-        let r_mean = p
-            .iter()
-            .zip(&r)
-            .filter(|(&pi, _)| pi > 0.0)
-            .map(|(_, ri)| ri)
-            .sum::<f64>()
-            / count as f64;
-        let (mut num, mut den) = (0.0, 0.0);
-        for i in 0..n {
-            if p[i] > 0.0 {
-                num += g[i] * t[i];
-                den += (r[i] - r_mean) * t[i];
-            }
-        }
-        let step = num / den;
-        let step = if step.is_finite() && step > 0.0 {
-            step
-        } else {
-            fallback_step
-        };
-
-        // step, projection onto p ≥ 0, overlap correction
-        let (mut overlap, mut clamped) = (false, false);
-        for i in 0..n {
-            if p[i] > 0.0 {
-                let stepped = p[i] - step * t[i];
-                clamped |= stepped < 0.0;
-                p[i] = stepped.max(0.0);
-            }
-            if p[i] == 0.0 && g[i] < 0.0 {
-                p[i] = -step * g[i];
-                overlap = true;
-            }
-        }
+        let step = step_length(&p, &g, &t, &r, count, fallback_step);
+        let (overlap, clamped) = step_and_project(&mut p, &g, &t, step);
         conjugate = !overlap;
-        let total: f64 = p.iter().sum();
-        if !(total > 0.0 && total.is_finite()) {
+        let Some(scale) = rescale_to_mean(&mut p, p_mean) else {
             return Err(Stalled {
                 iterations: iteration + 1,
                 residual: residual / gap_tol,
                 reason: "every pressure vanished (breakdown)",
             });
-        }
-        let scale = p_mean * n as f64 / total;
-        p.iter_mut().for_each(|pi| *pi *= scale);
-        u_state = match u_state {
-            _ if overlap || clamped => DisplacementState::Stale,
-            DisplacementState::Fresh => DisplacementState::Updated(1),
-            DisplacementState::Updated(k) => DisplacementState::Updated(k + 1),
-            DisplacementState::Stale => DisplacementState::Stale,
         };
+        u_state = next_displacement_state(u_state, overlap || clamped);
         if u_state != DisplacementState::Stale {
             for (ui, &ri) in u.iter_mut().zip(&r) {
                 *ui = scale * (*ui - step * ri);
@@ -188,4 +123,124 @@ pub(super) fn solve(
             "non-finite gap"
         },
     })
+}
+
+/// Writes the gap `g = u + s − δ` and returns the approach `δ` (the mean of `u + s` over the
+/// contact set `{p > 0}`), the number of contact points and the complementarity residual: the
+/// largest `|g|` on the contact set and `−g` off it.
+fn gap_and_residual(g: &mut [f64], u: &[f64], s: &[f64], p: &[f64]) -> (f64, usize, f64) {
+    let (mut sum, mut count) = (0.0, 0usize);
+    for (((gi, &ui), &si), &pi) in g.iter_mut().zip(u).zip(s).zip(p) {
+        *gi = ui + si;
+        if pi > 0.0 {
+            sum += *gi;
+            count += 1;
+        }
+    }
+    // mean(p) = p̄ > 0, so count ≥ 1
+    let approach = sum / count as f64;
+    let mut residual: f64 = 0.0;
+    for (gi, &pi) in g.iter_mut().zip(p) {
+        *gi -= approach;
+        let violation = if pi > 0.0 { gi.abs() } else { -*gi };
+        residual = residual.max(violation);
+    }
+    (approach, count, residual)
+}
+
+/// Writes the conjugate direction `t = g + β t` on the contact set (zero off it; `β = 0` unless
+/// `conjugate`, else the ratio of the squared gap norms on the contact set to `g_norm_old`) and
+/// returns the new squared norm, the next call's `g_norm_old`.
+fn conjugate_direction(
+    t: &mut [f64],
+    g: &[f64],
+    p: &[f64],
+    conjugate: bool,
+    g_norm_old: f64,
+) -> f64 {
+    let g_norm: f64 = g
+        .iter()
+        .zip(p)
+        .filter(|(_, &pi)| pi > 0.0)
+        .map(|(gi, _)| gi * gi)
+        .sum();
+    let beta = if conjugate { g_norm / g_norm_old } else { 0.0 };
+    for ((ti, &gi), &pi) in t.iter_mut().zip(g).zip(p) {
+        *ti = if pi > 0.0 { gi + beta * *ti } else { 0.0 };
+    }
+    g_norm
+}
+
+/// The exact line-search step along `t` on the contact set (`count` points), `r = K t` taken
+/// relative to its mean there; `fallback_step` when that step is not finite and positive.
+fn step_length(
+    p: &[f64],
+    g: &[f64],
+    t: &[f64],
+    r: &[f64],
+    count: usize,
+    fallback_step: f64,
+) -> f64 {
+    let r_mean = p
+        .iter()
+        .zip(r)
+        .filter(|(&pi, _)| pi > 0.0)
+        .map(|(_, ri)| ri)
+        .sum::<f64>()
+        / count as f64;
+    let (mut num, mut den) = (0.0, 0.0);
+    for i in 0..p.len() {
+        if p[i] > 0.0 {
+            num += g[i] * t[i];
+            den += (r[i] - r_mean) * t[i];
+        }
+    }
+    let step = num / den;
+    if step.is_finite() && step > 0.0 {
+        step
+    } else {
+        fallback_step
+    }
+}
+
+/// Steps the contact pressures by `−step·t`, clamps those that turn negative to zero and brings
+/// overlapping points out of contact (`p = 0`, `g < 0`) back in with `p = −step·g`. Returns
+/// whether any point overlapped and whether any pressure was clamped.
+fn step_and_project(p: &mut [f64], g: &[f64], t: &[f64], step: f64) -> (bool, bool) {
+    let (mut overlap, mut clamped) = (false, false);
+    for i in 0..p.len() {
+        if p[i] > 0.0 {
+            let stepped = p[i] - step * t[i];
+            clamped |= stepped < 0.0;
+            p[i] = stepped.max(0.0);
+        }
+        if p[i] == 0.0 && g[i] < 0.0 {
+            p[i] = -step * g[i];
+            overlap = true;
+        }
+    }
+    (overlap, clamped)
+}
+
+/// Rescales the pressures to the mean `p_mean` and returns the factor, or `None` if their sum
+/// is not positive and finite (every pressure vanished).
+fn rescale_to_mean(p: &mut [f64], p_mean: f64) -> Option<f64> {
+    let total: f64 = p.iter().sum();
+    if !(total > 0.0 && total.is_finite()) {
+        return None;
+    }
+    let scale = p_mean * p.len() as f64 / total;
+    p.iter_mut().for_each(|pi| *pi *= scale);
+    Some(scale)
+}
+
+/// Where the displacement stands after a step: stale if the step was not linear (a pressure
+/// clamped or a point brought back in), else one more linear update.
+fn next_displacement_state(state: DisplacementState, nonlinear: bool) -> DisplacementState {
+    match state {
+        _ if nonlinear => DisplacementState::Stale,
+        DisplacementState::Fresh => DisplacementState::Updated(1),
+        DisplacementState::Updated(k) => DisplacementState::Updated(k + 1),
+        DisplacementState::Stale => DisplacementState::Stale,
+    }
 }

@@ -5,7 +5,7 @@ use anyhow::Result;
 use std::io::Write;
 use wavy::accuracy::Tier;
 use wavy::models::{CoefficientSet, ModelKind, Reading};
-use wavy::runner::eval_request::LawRequest;
+use wavy::runner::requests::eval_request::LawRequest;
 
 /// The CSV header of `wavy eval`.
 pub const HEADER: &str =
@@ -49,7 +49,7 @@ pub struct EvalArgs {
 }
 
 /// Runs `wavy eval`, writing CSV to `out`; an input error names the flag. The evaluation is the
-/// library's (`wavy::runner::eval_request`, `wavy::runner::tolerance`).
+/// library's (`wavy::runner::requests::eval_request`, `wavy::runner::requests::tolerance_choice`).
 pub fn eval(args: &EvalArgs, out: &mut impl Write) -> Result<()> {
     positive("--ar", args.ar)?;
     non_negative("--tau-max-mpa", args.tau_max_mpa)?;

@@ -1,11 +1,11 @@
 //! Command-line values that cannot be used (the checks and messages are the library's,
-//! `wavy::runner::input`), and the clap parsers that name the flag, the value and the allowed range.
+//! `wavy::runner::requests::input_checks`), and the clap parsers that name the flag, the value and the allowed range.
 
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use std::str::FromStr;
 use wavy::fe::MeshLevel;
-pub use wavy::runner::input::{non_negative, out_of_range, positive, InputError};
-use wavy::runner::request_error::RequestError;
+pub use wavy::runner::requests::input_checks::{non_negative, out_of_range, positive, InputError};
+use wavy::runner::requests::request_error::RequestError;
 
 /// True when `e` is (or was caused by) an input that cannot be used, an unusable request or an
 /// invalid spec: exit 2.
@@ -32,13 +32,16 @@ where
 /// `--mesh`: a named level or an element count along the contact face (the library's check,
 /// its message for clap).
 pub fn mesh(s: &str) -> Result<MeshLevel, String> {
-    wavy::runner::input::mesh(s).map_err(|e| e.to_string())
+    wavy::runner::requests::input_checks::mesh(s).map_err(|e| e.to_string())
 }
 
-/// An even periodic profile, `order:aspect_ratio` pairs (`wavy::profile`).
+/// An even periodic profile, `order:aspect_ratio` pairs (`wavy::profile`; the library's check,
+/// the profile's own message for clap, which names the flag itself).
 pub fn profile(s: &str) -> Result<wavy::profile::Profile, String> {
-    s.parse()
-        .map_err(|e: wavy::profile::ProfileError| e.to_string())
+    wavy::runner::requests::input_checks::profile(s).map_err(|e| match e {
+        InputError::Refused { reason, .. } => reason,
+        other => other.to_string(),
+    })
 }
 
 /// Flags that take a list of numbers.

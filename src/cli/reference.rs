@@ -5,7 +5,8 @@ use super::specs::SweepArgs;
 use anyhow::{Context, Result};
 use std::io::Write;
 use std::path::PathBuf;
-use wavy::runner::{load_spec, refine_reference, write_atomic};
+use wavy::runner::scenes::speed_accuracy::refine_reference;
+use wavy::runner::{load_spec, write_atomic};
 
 /// Arguments of `wavy refine-reference`.
 #[derive(Debug, Clone, clap::Args)]

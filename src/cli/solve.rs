@@ -6,11 +6,11 @@ use std::io::{IsTerminal, Write};
 use std::ops::ControlFlow;
 use std::process::ExitCode;
 use wavy::defaults;
-use wavy::fe::{Kinematics, MeshLevel};
+use wavy::fe::{Kinematics, MeshLevel, SolveOptions};
 use wavy::profile::Profile;
-use wavy::runner::request_error::RequestError;
-use wavy::runner::solve_outcome::SolveRow;
-use wavy::runner::solve_request::{PreparedSolve, SolveRequest};
+use wavy::runner::requests::request_error::RequestError;
+use wavy::runner::requests::solve_outcome::SolveRow;
+use wavy::runner::requests::solve_request::{PreparedSolve, SolveRequest};
 
 /// Arguments of `wavy solve`.
 #[derive(Debug, Clone, clap::Args)]
@@ -49,8 +49,9 @@ pub struct SolveArgs {
     pub kinematics: Kinematics,
     /// Mesh: coarse (32×16 elements), default (48×24), fine (72×36), or N elements along the
     /// contact face (4 to 2048; N/2 across the thickness).
-    #[arg(long, default_value = "default", value_parser = super::input::mesh, conflicts_with = "tolerance")]
-    pub mesh: MeshLevel,
+    /// [default: default]
+    #[arg(long, value_parser = super::input::mesh, conflicts_with = "tolerance")]
+    pub mesh: Option<MeshLevel>,
     /// Instead of --mesh: the coarsest mesh whose measured largest relative error of p̄/E* at
     /// this (AR, τ_max) is at most this (e.g. 0.005); the choice goes to stderr
     /// (measurements: expected/speed_accuracy.csv, default physics only).
@@ -63,7 +64,7 @@ pub struct SolveArgs {
     #[arg(long)]
     pub error_estimate: bool,
     /// Load until the contact half-width a/λ reaches this value (in (0, 0.5)).
-    #[arg(long, default_value_t = 0.45, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = SolveOptions::default().until_a_over_lambda, allow_hyphen_values = true)]
     pub until_a_over_lambda: f64,
     /// Instead of a/λ: load until the mean pressure p̄/E* is this (> 0; the last loading row
     /// is the state at that load); --until-a-over-lambda then caps the contact half-width on
@@ -125,7 +126,7 @@ impl SolveArgs {
 
 /// Runs `wavy solve`: the header, then each converged point as soon as it is known; exit 1,
 /// after the converged rows, when the solver cannot go on. The solve is the library's
-/// (`wavy::runner::solve_request`); this layer prints.
+/// (`wavy::runner::requests::solve_request`); this layer prints.
 pub fn solve(args: &SolveArgs, out: &mut impl Write) -> Result<ExitCode> {
     let prepared = args.setup()?;
     if let (Some(choice), Some(t)) = (&prepared.tolerance_choice, args.tolerance) {

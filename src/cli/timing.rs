@@ -5,7 +5,7 @@ use super::input::InputError;
 use anyhow::{Context, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use wavy::runner::speed_accuracy::SpeedAccuracyScene;
+use wavy::runner::scenes::speed_accuracy::SpeedAccuracyScene;
 use wavy::runner::Spec;
 use wavy::runner::{load_spec, write_atomic};
 
@@ -58,9 +58,12 @@ pub fn time_tiers(args: &TimeTiersArgs, out: &mut impl Write) -> Result<()> {
     }
     let spec = load_spec(&args.spec)?;
     let scene = speed_accuracy_scene(&spec, &args.spec)?;
-    let timings = wavy::runner::time_tiers::measure(scene, args.runs, &machine(), &mut |line| {
-        eprintln!("{line}")
-    })?;
+    let timings = wavy::runner::scenes::speed_accuracy::time_tiers::measure(
+        scene,
+        args.runs,
+        &machine(),
+        &mut |line| eprintln!("{line}"),
+    )?;
     write_atomic(&args.out, timings.to_text().as_bytes())
         .with_context(|| args.out.display().to_string())?;
     writeln!(out, "wrote {}", args.out.display())?;

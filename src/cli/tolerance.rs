@@ -1,14 +1,14 @@
 //! `--tolerance` on the command line: the choice is the library's
-//! (`wavy::runner::tolerance`); this module tells it on stderr.
+//! (`wavy::runner::requests::tolerance_choice`); this module tells it on stderr.
 
 use anyhow::Result;
 use wavy::accuracy::measured::Choice;
 use wavy::accuracy::Tier;
-use wavy::runner::tolerance;
+use wavy::runner::requests::tolerance_choice;
 
 /// The choice, told on stderr.
 pub fn announce(choice: &Choice, tolerance: f64) {
-    eprintln!("{}", tolerance::announcement(choice, tolerance));
+    eprintln!("{}", tolerance_choice::announcement(choice, tolerance));
 }
 
 /// What `wavy eval --tolerance` evaluated: the tier chosen and its (a/λ, p̄/E*, extrapolated)
@@ -26,9 +26,10 @@ pub fn eval(
     xs: &[f64],
     tolerance: f64,
 ) -> Result<TierEvaluation> {
-    let choice = tolerance::eval_tier(aspect_ratio, tau_max_mpa, xs, tolerance)?;
+    let choice = tolerance_choice::eval_tier(aspect_ratio, tau_max_mpa, xs, tolerance)?;
     announce(&choice, tolerance);
-    let rows = tolerance::eval_with_tier(choice.tier, aspect_ratio, tau_max_mpa, xs, tolerance)?;
+    let rows =
+        tolerance_choice::eval_with_tier(choice.tier, aspect_ratio, tau_max_mpa, xs, tolerance)?;
     Ok(TierEvaluation {
         tier: choice.tier,
         rows,

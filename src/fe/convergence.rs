@@ -19,6 +19,7 @@
 //! `ρ/(ρ − 1)` (3 for ρ = 1.5).
 
 use super::{solve_curve, CurveFailure, CurvePoint, LayerProblem, MeshLevel, SolveOptions};
+use std::ops::ControlFlow;
 
 /// `p̄/E*` at `a/λ` by cubic interpolation of `√p̄` (see module docs); `None` outside
 /// the range of the points. A point whose `a` does not exceed the previous one's is
@@ -175,7 +176,7 @@ pub fn mesh_convergence_levels(
             mesh: level,
             ..*opts
         };
-        curves.push(solve_curve(problem, &o, &mut |_| {})?.points);
+        curves.push(solve_curve(problem, &o, &mut |_| ControlFlow::Continue(()))?.points);
     }
     convergence_table([&curves[0], &curves[1], &curves[2]], ratio, a_values).ok_or_else(|| {
         invalid(

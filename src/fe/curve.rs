@@ -22,7 +22,7 @@ pub struct CurvePoint {
     pub newton_iterations: usize,
     /// Contact-face nodes in contact.
     pub active_nodes: usize,
-    /// Total contact length over λ ([`super::patches`]): `2a/λ` for the single patch of a
+    /// Total contact length over λ ([`crate::fe::contact::patches`]): `2a/λ` for the single patch of a
     /// sinusoid.
     pub contact_fraction: f64,
     /// Contact patches in the half wavelength `[0, ½]` (a patch that reaches a symmetry line
@@ -156,7 +156,7 @@ pub struct Curve {
     #[serde(default)]
     pub unloading: Vec<CurvePoint>,
     /// The contact patches of each loading point (same order as `points`): `[start, end]`
-    /// in `[0, ½]` (units of λ, current positions; [`super::patches`]).
+    /// in `[0, ½]` (units of λ, current positions; [`crate::fe::contact::patches`]).
     #[serde(default)]
     pub patch_edges: Vec<Vec<[f64; 2]>>,
     /// Last converged state.

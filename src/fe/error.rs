@@ -3,6 +3,13 @@
 /// Why a curve could not be completed (or started).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SolveError {
+    /// The caller's step callback asked to stop (`ControlFlow::Break`), after `points`
+    /// converged points: an ordinary return, not a numerical failure.
+    #[error("stopped by the caller after {points} converged points")]
+    Stopped {
+        /// Converged points handed to the callback, the last one included.
+        points: usize,
+    },
     /// An input is outside its allowed range.
     #[error("invalid input: {field} = {value} (allowed: {allowed})")]
     InvalidInput {

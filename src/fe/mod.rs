@@ -11,39 +11,28 @@
 //! edge.
 //!
 //! # Method, in the order a solve reads
-//! * [`mesh`]: structured Q1 mesh graded toward the contact face and the peak;
-//! * [`material`], [`element`]: compressible neo-Hookean, mean-dilatation Q1/P0 energy
-//!   (locking-free for `κ/G` from 10 to 10⁴);
-//! * [`contact`]: the indenter and exact normal contact by nonlinear elimination on the
-//!   analytic surface in the current configuration;
-//! * [`friction`]: the Coulomb–Orowan law, its return mapping and tangent rows;
-//! * [`model`]: the discrete model: boundary conditions, constraints, gaps, contact forces,
-//!   the friction history (what a solve does not change);
-//! * [`assembly`]: the reduced residual and tangent of a state (the mutable side of a
-//!   solve: the sparse tangent, the last forces, the work counters);
-//! * [`loading`]: the load stepping from one contact-edge event to the next, to a contact
-//!   width or (with [`pressure_target`]) to a mean pressure; [`unloading`]: back to zero
-//!   load;
-//! * [`event_search`]: which node touches next and at which slab displacement;
-//!   [`node_events`]: the same for a contact in several patches (profiles), and
-//!   [`release_events`]: where a contact node lets go;
-//!   [`step_control`]: its regula falsi and the cutting of failed steps;
-//! * [`predictor`]: the load tangent and the predicted state of a step;
-//! * [`active_set`]: Newton passes alternating with contact-set updates;
-//! * [`newton`]: Newton with line search, the plain and the bordered (edge-event) step;
-//! * [`friction_step`]: the linear solve of a Newton step, with the semismooth choice of
-//!   each friction node's piece of the law;
+//! * [`model`]: the discrete model (boundary conditions, constraints, gaps, contact forces,
+//!   the friction history: what a solve does not change), built on [`model::mesh`] (the
+//!   structured Q1 mesh graded toward the contact face and the peak), [`model::material`] and
+//!   [`model::element`] (compressible neo-Hookean, mean-dilatation Q1/P0 energy, locking-free
+//!   for `κ/G` from 10 to 10⁴);
+//! * [`contact`]: the indenter and exact normal contact by nonlinear elimination on the analytic
+//!   surface in the current configuration, the Coulomb–Orowan law, where the contact edges lie,
+//!   the contact patches, and the point and deformed state of a converged state;
+//! * [`stepping`]: what one load step does: the load stepping from one contact-edge event to the
+//!   next, to a contact width or a mean pressure, and back to zero load; which node touches or
+//!   lets go next and at which slab displacement; the regula falsi and the cutting of failed
+//!   steps; the load tangent and the predicted state; the deformed states a caller asks for;
+//! * [`newton`]: what one Newton iteration does: Newton with line search (the plain and the
+//!   bordered, edge-event step), the passes that alternate with contact-set updates, the reduced
+//!   residual and tangent of a state ([`newton::assembly`]: the mutable side of a solve), and the
+//!   linear solve of a step with the semismooth choice of each friction node's piece of the law;
 //! * [`linsys`]: the sparse direct solves through faer (the fallback chain of the
 //!   factorisations is described there);
-//! * [`edge_rule`], [`patches`], [`measure`]: where the contact edges lie, the contact
-//!   patches, and the point and deformed state of a converged state;
 //! * [`curve`]: the computed curve (points, unloading points, last deformed state), the CSV
-//!   row of a point, and the work of a cycle;
-//! * [`step_state`]: the deformed state of every converged point, built only for a caller
-//!   that asks ([`solve_with_states`]);
-//! * [`error`]: why a curve could not be completed, with the points converged before;
-//! * [`convergence`]: interpolation of curves at fixed `a/λ` and the mesh-convergence
-//!   (Richardson) table;
+//!   row of a point, and the work of a cycle; [`error`]: why a curve could not be completed,
+//!   with the points converged before; [`convergence`]: interpolation of curves at fixed `a/λ`
+//!   and the mesh-convergence (Richardson) table;
 //! * [`shear_test`]: a block pressed onto a flat and sheared, verifying the friction law.
 //!
 //! docs/architecture.md walks one frictional Newton iteration through these files.
@@ -55,34 +44,18 @@
 // Index loops mirror the tensor index notation of the documented formulas.
 #![allow(clippy::needless_range_loop)]
 
-pub mod active_set;
-pub mod assembly;
 pub mod contact;
 pub mod convergence;
 pub mod curve;
-pub mod edge_rule;
-pub mod element;
 pub mod error;
-pub mod event_search;
-pub mod friction;
-pub mod friction_step;
 pub mod linsys;
-pub mod loading;
-pub mod material;
-pub mod measure;
-pub mod mesh;
 pub mod model;
 pub mod newton;
-pub mod node_events;
-pub mod patches;
-pub mod predictor;
-pub mod pressure_target;
-pub mod release_events;
 pub mod shear_test;
-pub mod step_control;
-pub mod step_state;
-pub mod unloading;
+pub mod stepping;
 
+pub use contact::edge_rule::{EdgeRule, DISCRETE_EDGE_FRACTION, EDGE_FRACTION_BY_ASPECT};
+pub use contact::friction::{CoulombOrowan, Interface};
 pub use convergence::{
     convergence_table, mesh_convergence, mesh_convergence_levels, p_at, ConvergenceRow,
     ConvergenceTable,
@@ -91,17 +64,16 @@ pub use curve::{
     cycle_work_over_estar_lambda2, Curve, CurvePoint, CurvePointParseError, DeformedState,
     LoadDirection, SolveWork,
 };
-pub use edge_rule::{EdgeRule, DISCRETE_EDGE_FRACTION, EDGE_FRACTION_BY_ASPECT};
 pub use error::{CurveFailure, SolveError};
-pub use friction::{CoulombOrowan, Interface};
-pub use loading::Stepping;
-pub use material::estar_over_g;
-pub use mesh::{Grading, MeshLevel, MeshLevelParseError};
-pub use step_state::StepState;
+pub use model::material::estar_over_g;
+pub use model::mesh::{Grading, MeshLevel, MeshLevelParseError};
+pub use stepping::loading::Stepping;
+pub use stepping::step_state::StepState;
 
 use serde::{Deserialize, Serialize};
 
 use crate::profile::{FinerHarmonics, Profile};
+use std::ops::ControlFlow;
 
 /// Kinematic model; named `finite` and `linear` in specs and on the command line.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -406,7 +378,7 @@ fn validate_profile(profile: &Profile, nx: usize, grading: Grading) -> Result<()
     if profile.is_sinusoid() {
         return Ok(());
     }
-    // the largest face spacing, at X = ½ (mesh::Mesh::graded): ratio/((ratio + 1) nx)
+    // the largest face spacing, at X = ½ (model::mesh::Mesh::graded): ratio/((ratio + 1) nx)
     let ratio = grading.peak_ratio;
     let largest_spacing = ratio / ((ratio + 1.0) * nx as f64);
     for h in profile.finer.iter().filter(|h| h.aspect_ratio > 0.0) {
@@ -438,8 +410,8 @@ fn validate_profile(profile: &Profile, nx: usize, grading: Grading) -> Result<()
 /// Build the discrete model for a problem (exposed for tests and diagnostics).
 pub fn build_model(problem: &LayerProblem, opts: &SolveOptions) -> model::Model {
     let (nx, ny) = opts.mesh.counts();
-    let mesh = mesh::Mesh::graded(nx, ny, problem.thickness_over_lambda, opts.grading);
-    let mat = material::NeoHooke {
+    let mesh = model::mesh::Mesh::graded(nx, ny, problem.thickness_over_lambda, opts.grading);
+    let mat = model::material::NeoHooke {
         g: 1.0,
         kappa: problem.kappa_over_g,
     };
@@ -447,7 +419,7 @@ pub fn build_model(problem: &LayerProblem, opts: &SolveOptions) -> model::Model 
         mesh,
         mat,
         problem.kinematics,
-        contact::Indenter {
+        contact::indenter::Indenter {
             profile: problem.profile(),
         },
         problem.interface,
@@ -457,16 +429,17 @@ pub fn build_model(problem: &LayerProblem, opts: &SolveOptions) -> model::Model 
 
 /// Trace the load curve `p̄/E*(a/λ)` from first contact to `opts.until_a_over_lambda`.
 ///
-/// `on_step` is called with every converged point. On failure the error comes with the
-/// points converged so far.
+/// `on_step` is called with every converged point; its `ControlFlow::Break` stops the solve,
+/// which then returns [`SolveError::Stopped`] with the points converged so far. On failure the
+/// error comes with the points converged so far.
 pub fn solve_curve(
     problem: &LayerProblem,
     opts: &SolveOptions,
-    on_step: &mut dyn FnMut(&CurvePoint),
+    on_step: &mut dyn FnMut(&CurvePoint) -> ControlFlow<()>,
 ) -> Result<Curve, Box<CurveFailure>> {
     let (model, estar) = validated_model(problem, opts)?;
-    let mut asm = assembly::Assembly::new(&model);
-    loading::trace(&model, &mut asm, opts, estar, &mut |p, _| on_step(p))
+    let mut asm = newton::assembly::Assembly::new(&model);
+    stepping::loading::trace(&model, &mut asm, opts, estar, &mut |p, _| on_step(p))
 }
 
 /// The model of a validated problem and `E*/G`, or the input error as a failed curve.
@@ -489,18 +462,19 @@ fn validated_model(
 
 /// A loading–unloading cycle: the load curve as [`solve_curve`], then the unloading branch
 /// from `opts.until_a_over_lambda` back to zero load, with the friction history carried
-/// through ([`Curve::unloading`]; the stepping is described at `unloading::unload`).
+/// through ([`Curve::unloading`]; the stepping is described at `stepping::unloading::unload`).
 ///
-/// `on_step` is called with every converged point and its branch. On failure the error
-/// comes with the points of both branches converged so far.
+/// `on_step` is called with every converged point and its branch (`Break` stops the solve, as
+/// in [`solve_curve`]). On failure the error comes with the points of both branches converged
+/// so far.
 pub fn solve_cycle(
     problem: &LayerProblem,
     opts: &SolveOptions,
-    on_step: &mut dyn FnMut(LoadDirection, &CurvePoint),
+    on_step: &mut dyn FnMut(LoadDirection, &CurvePoint) -> ControlFlow<()>,
 ) -> Result<Curve, Box<CurveFailure>> {
     let (model, estar) = validated_model(problem, opts)?;
-    let mut asm = assembly::Assembly::new(&model);
-    unloading::trace_cycle(&model, &mut asm, opts, estar, &mut |dir, p, _| {
+    let mut asm = newton::assembly::Assembly::new(&model);
+    stepping::unloading::trace_cycle(&model, &mut asm, opts, estar, &mut |dir, p, _| {
         on_step(dir, p)
     })
 }
@@ -514,17 +488,17 @@ pub fn solve_with_states(
     problem: &LayerProblem,
     opts: &SolveOptions,
     unload: bool,
-    on_step: &mut dyn FnMut(LoadDirection, &CurvePoint, &StepState),
+    on_step: &mut dyn FnMut(LoadDirection, &CurvePoint, &StepState) -> ControlFlow<()>,
 ) -> Result<Curve, Box<CurveFailure>> {
     let (model, estar) = validated_model(problem, opts)?;
-    let mut asm = assembly::Assembly::new(&model);
-    let mut states = step_state::StepStates::new(&model, estar, on_step);
+    let mut asm = newton::assembly::Assembly::new(&model);
+    let mut states = stepping::step_state::StepStates::new(&model, estar, on_step);
     if unload {
-        unloading::trace_cycle(&model, &mut asm, opts, estar, &mut |dir, p, at| {
+        stepping::unloading::trace_cycle(&model, &mut asm, opts, estar, &mut |dir, p, at| {
             states.observe(dir, p, at)
         })
     } else {
-        loading::trace(&model, &mut asm, opts, estar, &mut |p, at| {
+        stepping::loading::trace(&model, &mut asm, opts, estar, &mut |p, at| {
             states.observe(LoadDirection::Loading, p, at)
         })
     }

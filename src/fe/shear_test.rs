@@ -11,18 +11,18 @@
 //!
 //! With Coulomb–Orowan friction the block slides as a whole when the slab's mean shear
 //! force reaches the sum of the nodal thresholds, `Σ min(μ N_i, τ_max ℓ_i)/W`, i.e.
-//! `min(μ p̄, τ_max)` for a uniform pressure, and not before; `tests/fe_friction.rs`
+//! `min(μ p̄, τ_max)` for a uniform pressure, and not before; `tests/solver/fe_friction.rs`
 //! checks that. The same model, solver and friction code as the wavy problem are used:
 //! only the indenter (amplitude 0) and the lateral faces ([`Lateral::Free`]) differ.
 
-use super::active_set::{equilibrate, Hold};
-use super::assembly::Assembly;
-use super::contact::Indenter;
-use super::friction::{CoulombOrowan, Interface};
-use super::material::{estar_over_g, NeoHooke};
-use super::mesh::{Grading, Mesh};
-use super::model::{Lateral, Model};
 use super::{Kinematics, SolveError, SolveOptions};
+use crate::fe::contact::friction::{CoulombOrowan, Interface};
+use crate::fe::contact::indenter::Indenter;
+use crate::fe::model::material::{estar_over_g, NeoHooke};
+use crate::fe::model::mesh::{Grading, Mesh};
+use crate::fe::model::{Lateral, Model};
+use crate::fe::newton::active_set::{equilibrate, Hold};
+use crate::fe::newton::assembly::Assembly;
 
 /// The press-then-shear test.
 #[derive(Clone, Copy, Debug, PartialEq)]

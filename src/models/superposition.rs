@@ -485,4 +485,4 @@ fn gauss_legendre(m: usize) -> (Vec<f64>, Vec<f64>) {
 }
 
 #[cfg(test)]
-mod tests;
+mod superposition_tests;

@@ -5,6 +5,7 @@
 //! every coordinate to whole pixels: the same data give the same bytes on every machine.
 //! A figure is a grid of [`Panel`]s, each a set of [`Series`] on linear axes.
 
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -329,12 +330,41 @@ fn tick(v: f64) -> String {
     }
 }
 
+/// The chart type every panel is drawn on: linear f64 axes (log₁₀ values on a log axis).
+type PanelChart<'a, 'b> =
+    ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Draws `panel` in `area`: axes and mesh, every series, the legend, then the notes.
 fn draw_panel(
     area: &DrawingArea<SVGBackend<'_>, Shift>,
     panel: &Panel,
     fs: u32,
 ) -> Result<(), PlotError> {
     let panel = &to_log_coordinates(panel)?;
+    let mut chart = draw_axes(area, panel, fs)?;
+    for s in &panel.series {
+        draw_series(&mut chart, s)?;
+    }
+    if let Some(pos) = panel.legend {
+        chart
+            .configure_series_labels()
+            .position(pos.to_plotters())
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(160, 160, 160))
+            .label_font((FONT, fs - 2).into_font())
+            .draw()
+            .map_err(err)?;
+    }
+    draw_notes(&chart, panel, fs)
+}
+
+/// Builds the chart of `panel` (already in log coordinates on a log axis) in `area`, with its
+/// caption, and draws the mesh, the axis descriptions and the tick labels in data units.
+fn draw_axes<'a, 'b>(
+    area: &'a DrawingArea<SVGBackend<'b>, Shift>,
+    panel: &Panel,
+    fs: u32,
+) -> Result<PanelChart<'a, 'b>, PlotError> {
     let (log_x, log_y) = panel.log_scale;
     let x_tick = move |v: &f64| tick(if log_x { 10f64.powf(*v) } else { *v });
     let y_tick = move |v: &f64| tick(if log_y { 10f64.powf(*v) } else { *v });
@@ -363,83 +393,86 @@ fn draw_panel(
         .y_label_formatter(&y_tick)
         .draw()
         .map_err(err)?;
+    Ok(chart)
+}
 
-    for s in &panel.series {
-        let color = s.color;
-        let anno = match s.style {
-            Style::Band => {
-                let mut outline = s.points.clone();
-                outline.extend(s.upper.iter().rev().copied());
-                chart
-                    .draw_series(std::iter::once(Polygon::new(
-                        outline,
-                        color.mix(0.22).filled(),
-                    )))
-                    .map_err(err)?
-            }
-            Style::Line {
-                width,
-                dashed: false,
-            } => chart
-                .draw_series(LineSeries::new(
-                    s.points.iter().copied(),
-                    color.stroke_width(width),
-                ))
-                .map_err(err)?,
-            Style::Line {
-                width,
-                dashed: true,
-            } => chart
-                .draw_series(DashedLineSeries::new(
-                    s.points.iter().copied(),
-                    8,
-                    5,
-                    color.stroke_width(width),
-                ))
-                .map_err(err)?,
-            Style::Markers { size, filled } => {
-                let style = if filled {
-                    color.filled()
-                } else {
-                    color.stroke_width(2)
-                };
-                chart
-                    .draw_series(s.points.iter().map(|&p| Circle::new(p, size, style)))
-                    .map_err(err)?
-            }
-        };
-        if let Some(label) = &s.label {
-            let style = s.style;
-            anno.label(label).legend(
-                move |(x, y)| -> DynElement<'static, SVGBackend, (i32, i32)> {
-                    match style {
-                        Style::Markers { size, .. } => {
-                            Circle::new((x + 10, y), size, color.stroke_width(2)).into_dyn()
-                        }
-                        Style::Band => {
-                            Rectangle::new([(x, y - 5), (x + 20, y + 5)], color.mix(0.22).filled())
-                                .into_dyn()
-                        }
-                        Style::Line { width, .. } => {
-                            PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(width))
-                                .into_dyn()
-                        }
-                    }
-                },
-            );
+/// Draws one series in its style (band, solid or dashed line, markers) and, if it has a label,
+/// registers its legend entry with the matching glyph ([`legend_glyph`]).
+fn draw_series<'a, 'b: 'a>(chart: &mut PanelChart<'a, 'b>, s: &Series) -> Result<(), PlotError> {
+    let color = s.color;
+    let anno = match s.style {
+        Style::Band => {
+            let mut outline = s.points.clone();
+            outline.extend(s.upper.iter().rev().copied());
+            chart
+                .draw_series(std::iter::once(Polygon::new(
+                    outline,
+                    color.mix(0.22).filled(),
+                )))
+                .map_err(err)?
+        }
+        Style::Line {
+            width,
+            dashed: false,
+        } => chart
+            .draw_series(LineSeries::new(
+                s.points.iter().copied(),
+                color.stroke_width(width),
+            ))
+            .map_err(err)?,
+        Style::Line {
+            width,
+            dashed: true,
+        } => chart
+            .draw_series(DashedLineSeries::new(
+                s.points.iter().copied(),
+                8,
+                5,
+                color.stroke_width(width),
+            ))
+            .map_err(err)?,
+        Style::Markers { size, filled } => {
+            let style = if filled {
+                color.filled()
+            } else {
+                color.stroke_width(2)
+            };
+            chart
+                .draw_series(s.points.iter().map(|&p| Circle::new(p, size, style)))
+                .map_err(err)?
+        }
+    };
+    if let Some(label) = &s.label {
+        let style = s.style;
+        anno.label(label)
+            .legend(move |(x, y)| legend_glyph(style, color, (x, y)));
+    }
+    Ok(())
+}
+
+/// The legend glyph of a series of `style` and `color` at legend position `(x, y)`: a circle
+/// for markers, a shaded box for a band, a short line otherwise.
+fn legend_glyph<'b>(
+    style: Style,
+    color: RGBColor,
+    (x, y): (i32, i32),
+) -> DynElement<'static, SVGBackend<'b>, (i32, i32)> {
+    match style {
+        Style::Markers { size, .. } => {
+            Circle::new((x + 10, y), size, color.stroke_width(2)).into_dyn()
+        }
+        Style::Band => {
+            Rectangle::new([(x, y - 5), (x + 20, y + 5)], color.mix(0.22).filled()).into_dyn()
+        }
+        Style::Line { width, .. } => {
+            PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(width)).into_dyn()
         }
     }
-    if let Some(pos) = panel.legend {
-        chart
-            .configure_series_labels()
-            .position(pos.to_plotters())
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(160, 160, 160))
-            .label_font((FONT, fs - 2).into_font())
-            .draw()
-            .map_err(err)?;
-    }
-    // Notes go in the lower right corner, where the curves (rising from the origin) leave room.
+}
+
+/// Writes the panel's notes right-aligned in the lower right corner of the plotting area, the
+/// last note lowest, where the curves (rising from the origin) leave room.
+fn draw_notes(chart: &PanelChart<'_, '_>, panel: &Panel, fs: u32) -> Result<(), PlotError> {
     let plot = chart.plotting_area();
     let (px, py) = plot.get_base_pixel();
     let corner = plot.map_coordinate(&(panel.x_range.1, panel.y_range.0));

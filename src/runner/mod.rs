@@ -4,47 +4,15 @@
 //! temporary file in the target folder and renamed into place, so that a failed or
 //! interrupted run never leaves a partial CSV or SVG behind.
 
-#[macro_use]
-pub mod scenes;
 pub use crate::atomic_write;
-pub mod eval_request;
-pub mod fe_cases;
-pub(crate) mod fe_inverse;
-pub mod fingertip_ridges;
-pub mod input;
-pub mod measured;
-pub mod reference_curves;
-pub mod refine_reference;
-pub mod request_error;
+pub mod measured_points;
+pub mod requests;
 pub mod review;
-pub(crate) mod scene_output;
-pub(crate) mod scene_reference;
-pub mod solve_outcome;
-pub mod solve_request;
-pub(crate) mod speed_accuracy_figure;
-pub(crate) mod speed_accuracy_tables;
+pub mod scenes;
 pub mod sweep;
-pub(crate) mod tier_measurement;
-pub mod tier_timings;
-pub mod time_tiers;
-pub mod tolerance;
-pub(crate) mod wnl_beyond_fit;
-
-// The one list of scenes: `module::SectionType`, one line each (see `scenes`).
-scene_registry! {
-    correction_surfaces::CorrectionSurfacesScene,
-    fe_vs_model::FeVsModelScene,
-    fingertip_area::FingertipAreaScene,
-    fingertip_fe::FingertipFeScene,
-    deformed_mesh::DeformedMeshScene,
-    table1_refit::Table1RefitScene,
-    speed_accuracy::SpeedAccuracyScene,
-    hysteresis::HysteresisScene,
-    two_scale::TwoScaleScene,
-}
 
 pub use atomic_write::write_atomic;
-pub use scenes::{Scene, SceneContext, SceneResult};
+pub use scenes::{Scene, SceneContext, SceneResult, Spec};
 
 use crate::models::{ModelKind, ModelLaw};
 use crate::spec::{ModelSelection, SpecError};
@@ -107,7 +75,7 @@ pub fn run_spec_file(path: &Path, opts: &RunOptions) -> Result<SceneOutput> {
 /// into the cache and writes no figure. Returns (cases computed, cases already cached).
 pub fn compute_share(path: &Path, opts: &RunOptions) -> Result<(usize, usize)> {
     let spec = load_spec(path)?;
-    fe_cases::compute_share(&spec.scene().fe_cases(opts), opts)
+    sweep::fe_cases::compute_share(&spec.scene().fe_cases(opts), opts)
 }
 
 /// Reads and parses the spec at `path`.

@@ -1,0 +1,378 @@
+//! Interface law: regularised Coulomb–Orowan friction (docs/replication.md R3).
+//!
+//! # The law
+//! With [`Interface::CoulombOrowan`] the indenter also exerts a tangential force `T` on
+//! each active node, along the surface tangent `t = (1, y_s')/w`, `w = √(1 + y_s'²)`. The
+//! normal force is `N = n·g = (g_y − y_s' g_x)/w` (`g = ∂Π/∂x` the node's internal force,
+//! `n = (−y_s', 1)/w`), and the nodal slip threshold is the traction bound
+//! `τ_sl = min(μ p, τ_max)` integrated over the node's tributary length `ℓ` on the deformed
+//! face (half of each adjacent face segment, chords):
+//!
+//! ```text
+//! L = min(μ N, τ_max ℓ)
+//! ```
+//!
+//! Stick is regularised as in penalty friction: the tangential force grows with the
+//! *elastic slip* `e` and reaches the threshold at `e_c` (a small fraction of the element
+//! size, [`CoulombOrowan::elastic_slip_over_element`]). Return mapping, per load step,
+//! from the committed history `(e_n, S_n)` (elastic slip and arc-length position on the
+//! indenter at the last converged step, [`SlipHistory`]):
+//!
+//! ```text
+//! e* = e_n + S(x) − S_n            (trial elastic slip; S the arc length along y_s)
+//! φ  = e*/e_c  if |e*| ≤ e_c (stick),   sign(e*) otherwise (slip)
+//! T  = −L φ                        (opposes the slip)
+//! ```
+//!
+//! and on convergence `e_{n+1} = e_c φ`, `S_{n+1} = S(x)`.
+//!
+//! # Residual and tangent rows
+//! The reduced residual of an active node's sliding unknown `x` (slot vector
+//! `c = (1, y_s')`, see [`crate::fe::contact::indenter`]) becomes
+//!
+//! ```text
+//! r_x = c·g + w L φ
+//! ```
+//!
+//! (zero: the tangential internal force balances the friction force). Its derivatives,
+//! with `dS/dx = w`, `dw/dx = y_s' y_s''/w`, `dφ/dx = w/e_c` in stick and 0 in slip:
+//!
+//! * Coulomb regime, `w L φ = μ φ (−y_s', 1)·g`: a modified left vector on the element
+//!   Hessian rows of the node,
+//!   `∂(w L φ)/∂q_t = μ φ (−y_s', 1) H[node, ·] c_t`, plus on the node's own unknown
+//!   `μ (dφ/dx) (g_y − y_s' g_x) − μ φ y_s'' g_x`;
+//! * Orowan regime, `w L φ = w τ_max ℓ φ`: it depends on the neighbours' positions `P_m`
+//!   through `ℓ`,
+//!   `∂(w L φ)/∂q_m = w τ_max φ (∂ℓ/∂P_m)·c_m` on a neighbour's slot, and on the own
+//!   unknown `τ_max (y_s' y_s''/w ℓ φ + w φ (∂ℓ/∂P)·c + w ℓ dφ/dx)`.
+//!
+//! The tangent is not symmetric: its friction rows are a low-rank update of the symmetric
+//! part, solved by the Woodbury identity (see [`crate::fe::linsys`]). The law is piecewise
+//! smooth (stick or slip either way; open, Coulomb or Orowan threshold): each node's row is
+//! kept under either regime (`FrictionRow`, assembled in
+//! [`crate::fe::newton::friction_rows`]), so that the Newton step can put a node on
+//! another piece of the law without reassembling, a semismooth Newton step
+//! ([`crate::fe::newton::friction_step`]). With [`Interface::Frictionless`] none of this
+//! is built. For linear kinematics the same law
+//! acts on `u_x` at the reference position (`y_s' = 0`, `S = x`).
+
+use crate::fe::model::material::{estar_over_g, NeoHooke};
+
+/// Interface law between the layer and the indenter.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub enum Interface {
+    /// Adhesionless, frictionless.
+    #[default]
+    Frictionless,
+    /// Adhesionless, regularised Coulomb–Orowan friction.
+    CoulombOrowan(CoulombOrowan),
+}
+
+impl Interface {
+    /// The interface for friction coefficient `μ` and shear strength `τ_max/E*`:
+    /// frictionless when either is zero (`τ_sl = min(μ p, τ_max) ≡ 0`), so that no
+    /// friction machinery is built for a frictionless scene.
+    pub fn coulomb_orowan(
+        friction_coefficient: f64,
+        tau_max_over_estar: f64,
+        elastic_slip_over_element: f64,
+    ) -> Self {
+        if friction_coefficient == 0.0 || tau_max_over_estar == 0.0 {
+            Interface::Frictionless
+        } else {
+            Interface::CoulombOrowan(CoulombOrowan {
+                friction_coefficient,
+                tau_max_over_estar,
+                elastic_slip_over_element,
+            })
+        }
+    }
+}
+
+/// Regularised Coulomb–Orowan friction, `τ_sl = min(μ p, τ_max)` (docs/replication.md R3).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct CoulombOrowan {
+    /// Friction coefficient `μ` (> 0).
+    pub friction_coefficient: f64,
+    /// Interfacial shear strength over the plane-strain modulus, `τ_max/E*` (> 0).
+    pub tau_max_over_estar: f64,
+    /// Elastic slip at which the full threshold is mobilised, over the mean element length
+    /// along the contact face (> 0). Abaqus's penalty friction uses 0.005 by default.
+    pub elastic_slip_over_element: f64,
+}
+
+/// Committed friction history of one contact-face node.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SlipHistory {
+    /// Elastic slip `e_n` at the last converged step (units of λ, `|e_n| ≤ e_c`).
+    pub elastic: f64,
+    /// Current `x` at the last converged step; the step's slip is the arc length from
+    /// here.
+    pub anchor_x: f64,
+}
+
+impl SlipHistory {
+    /// No elastic slip, anchored at `x`: a node that is free or has just touched.
+    pub(in crate::fe) fn fresh(x: f64) -> Self {
+        Self {
+            elastic: 0.0,
+            anchor_x: x,
+        }
+    }
+
+    /// Trial elastic slip `e* = e_n + S(x) − S_n`, given the arc length
+    /// `S(x) − S_n` travelled along the indenter from the anchor.
+    pub(in crate::fe) fn trial_elastic_slip(&self, arc_from_anchor: f64) -> f64 {
+        self.elastic + arc_from_anchor
+    }
+}
+
+/// Friction law in solver units (`G = 1`, lengths in λ).
+#[derive(Clone, Copy, Debug)]
+pub(in crate::fe) struct FrictionLaw {
+    /// Friction coefficient `μ`.
+    pub mu: f64,
+    /// `τ_max/G`.
+    pub tau_max: f64,
+    /// Elastic slip `e_c` at which the threshold is reached (units of λ).
+    pub slip_c: f64,
+}
+
+/// Friction regime of one active node.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(in crate::fe) enum Regime {
+    /// `N ≤ 0`: no threshold (the node is about to be released).
+    Open,
+    /// `L = μ N`.
+    Coulomb,
+    /// `L = τ_max ℓ`.
+    Orowan,
+}
+
+/// Friction force of one active node and what its derivatives need.
+#[derive(Clone, Copy, Debug)]
+pub(in crate::fe) struct FrictionEval {
+    /// `y_s'`, `y_s''` at the node, `w = √(1 + y_s'²)`.
+    pub(in crate::fe) s: f64,
+    pub(in crate::fe) c: f64,
+    pub(in crate::fe) w: f64,
+    /// Trial elastic slip `e*` and its branch of the return mapping ([`Branch`]).
+    pub(in crate::fe) trial_slip: f64,
+    pub(in crate::fe) branch: Branch,
+    /// Which bound is the threshold.
+    pub regime: Regime,
+    /// Tributary length `ℓ` and `∂ℓ/∂P` of the node and its two neighbours (zero where
+    /// absent): `[previous, node, next]`.
+    pub(in crate::fe) ell: f64,
+    pub(in crate::fe) dell: [[f64; 2]; 3],
+    /// Threshold `L` (units `G λ`).
+    pub limit: f64,
+    /// Residual contribution `w L φ`.
+    pub force: f64,
+}
+
+impl FrictionLaw {
+    /// The law of `interface` in solver units: `τ_max/G = (τ_max/E*) (E*/G)` with the
+    /// material's `E*/G`, and `e_c` the given fraction of the mean element length
+    /// `face_width / face_elements` along the contact face.
+    pub(in crate::fe) fn in_solver_units(
+        interface: &CoulombOrowan,
+        mat: &NeoHooke,
+        face_width: f64,
+        face_elements: usize,
+    ) -> Self {
+        Self {
+            mu: interface.friction_coefficient,
+            tau_max: interface.tau_max_over_estar * estar_over_g(mat.kappa / mat.g) * mat.g,
+            slip_c: interface.elastic_slip_over_element * face_width / face_elements as f64,
+        }
+    }
+
+    /// Friction force of one active node (return mapping from its committed history).
+    ///
+    /// `slope`, `curvature`: `y_s'`, `y_s''` under the node; `trial_slip`: `e*`
+    /// ([`SlipHistory::trial_elastic_slip`]); `node`, `neighbours`: current positions of
+    /// the node and of its previous and next contact-face neighbours (if any); `normal`:
+    /// the normal force `N`.
+    pub(in crate::fe) fn eval(
+        &self,
+        slope: f64,
+        curvature: f64,
+        trial_slip: f64,
+        node: [f64; 2],
+        neighbours: [Option<[f64; 2]>; 2],
+        normal: f64,
+    ) -> FrictionEval {
+        let w = (1.0 + slope * slope).sqrt();
+        let branch = Branch::of(trial_slip, self.slip_c);
+        let (phi, _) = branch.mobilisation(trial_slip, self.slip_c, w);
+        let (ell, dell) = tributary_length(node, neighbours);
+        let (regime, limit) = self.threshold(normal, ell);
+        FrictionEval {
+            s: slope,
+            c: curvature,
+            w,
+            trial_slip,
+            branch,
+            regime,
+            ell,
+            dell,
+            limit,
+            force: w * limit * phi,
+        }
+    }
+
+    /// Regime and threshold `L = min(μ N, τ_max ℓ)` (none when `N ≤ 0`).
+    fn threshold(&self, normal: f64, ell: f64) -> (Regime, f64) {
+        if normal <= 0.0 {
+            (Regime::Open, 0.0)
+        } else if self.mu * normal <= self.tau_max * ell {
+            (Regime::Coulomb, self.mu * normal)
+        } else {
+            (Regime::Orowan, self.tau_max * ell)
+        }
+    }
+
+    /// History after a converged load step: `e_{n+1} = e_c φ` (`e*` clamped to
+    /// `[−e_c, e_c]`) and `S_{n+1} = S(x)` on an active node (`trial_slip = Some(e*)`);
+    /// no elastic slip on a free one.
+    pub(in crate::fe) fn commit(&self, trial_slip: Option<f64>, x: f64) -> SlipHistory {
+        let elastic = match trial_slip {
+            Some(e) => e.clamp(-self.slip_c, self.slip_c),
+            None => 0.0,
+        };
+        SlipHistory {
+            elastic,
+            ..SlipHistory::fresh(x)
+        }
+    }
+}
+
+/// Tributary length `ℓ` of a contact-face node, half of each adjacent chord of the
+/// deformed face, and `∂ℓ/∂P` of `[previous, node, next]`.
+fn tributary_length(node: [f64; 2], neighbours: [Option<[f64; 2]>; 2]) -> (f64, [[f64; 2]; 3]) {
+    let mut ell = 0.0;
+    let mut dell = [[0.0; 2]; 3];
+    for (j, m) in neighbours.into_iter().enumerate() {
+        let Some(pm) = m else { continue };
+        let d = [pm[0] - node[0], pm[1] - node[1]];
+        let len = d[0].hypot(d[1]);
+        ell += 0.5 * len;
+        let u = [0.5 * d[0] / len, 0.5 * d[1] / len];
+        dell[2 * j] = u;
+        dell[1] = [dell[1][0] - u[0], dell[1][1] - u[1]];
+    }
+    (ell, dell)
+}
+
+/// Branch of the return mapping that a node's trial elastic slip `e*` falls on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(in crate::fe) enum Branch {
+    /// `|e*| ≤ e_c`: `φ = e*/e_c`.
+    Stick,
+    /// `e* > e_c`: `φ = 1`.
+    SlipForward,
+    /// `e* < −e_c`: `φ = −1`.
+    SlipBackward,
+}
+
+impl Branch {
+    /// The branch of trial slip `e*` under the elastic-slip limit `e_c`. The band's edges
+    /// `|e*| = e_c` belong to the slip branches (`φ` is continuous there, the tangent is the
+    /// one-sided one of continued slip): a node committed while sliding sits there
+    /// (`e_{n+1} = ±e_c`), and its load tangent and first Newton step then see it slide on
+    /// instead of holding it on the stiff stick spring (fewer tangent assemblies:
+    /// docs/performance.md, frictional speed).
+    pub(in crate::fe) fn of(trial_slip: f64, slip_c: f64) -> Self {
+        if trial_slip.abs() < slip_c {
+            Branch::Stick
+        } else if trial_slip > 0.0 {
+            Branch::SlipForward
+        } else {
+            Branch::SlipBackward
+        }
+    }
+
+    /// `φ` and `dφ/dx` of this branch's affine law at `e*` (`dS/dx = w`); on the stick
+    /// branch `φ = e*/e_c` also beyond the band (the branch's own affine extension).
+    pub(in crate::fe) fn mobilisation(self, trial_slip: f64, slip_c: f64, w: f64) -> (f64, f64) {
+        match self {
+            Branch::Stick => (trial_slip / slip_c, w / slip_c),
+            Branch::SlipForward => (1.0, 0.0),
+            Branch::SlipBackward => (-1.0, 0.0),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `∂ℓ/∂P` of [`tributary_length`] against central differences, for an interior node
+    /// and for either end of the face.
+    #[test]
+    fn tributary_length_derivative_matches_central_differences() {
+        let node = [0.2, -0.01];
+        let (prev, next) = ([0.17, -0.004], [0.235, -0.02]);
+        let h = 1e-7;
+        for neighbours in [
+            [Some(prev), Some(next)],
+            [None, Some(next)],
+            [Some(prev), None],
+        ] {
+            let points = [neighbours[0], Some(node), neighbours[1]];
+            let (_, dell) = tributary_length(node, neighbours);
+            for (j, p) in points.iter().enumerate() {
+                let Some(p) = *p else {
+                    assert_eq!(dell[j], [0.0; 2], "absent neighbour {j}");
+                    continue;
+                };
+                for i in 0..2 {
+                    let ell_moved = |delta: f64| {
+                        let mut moved = points;
+                        let mut q = p;
+                        q[i] += delta;
+                        moved[j] = Some(q);
+                        tributary_length(moved[1].expect("node"), [moved[0], moved[2]]).0
+                    };
+                    let fd = (ell_moved(h) - ell_moved(-h)) / (2.0 * h);
+                    assert!(
+                        (fd - dell[j][i]).abs() <= 1e-7,
+                        "∂ℓ/∂P[{j}][{i}] = {} vs finite difference {fd}",
+                        dell[j][i]
+                    );
+                }
+            }
+        }
+    }
+
+    /// Return mapping: `φ` is continuous at `|e*| = e_c` (the slip branch's edge) and
+    /// saturates beyond, the threshold is `min(μ N, τ_max ℓ)`, and the committed slip is
+    /// `e_c φ`.
+    #[test]
+    fn return_mapping_saturates_at_the_threshold() {
+        let law = FrictionLaw {
+            mu: 0.5,
+            tau_max: 0.1,
+            slip_c: 1e-3,
+        };
+        let w = 1.2;
+        let mobilisation = |e: f64| Branch::of(e, law.slip_c).mobilisation(e, law.slip_c, w);
+        for sign in [1.0, -1.0] {
+            // the band's edge belongs to the slip branch: φ continuous, the slip tangent
+            assert_eq!(mobilisation(sign * law.slip_c), (sign, 0.0));
+            assert_eq!(mobilisation(sign * 2.0 * law.slip_c), (sign, 0.0));
+            let (phi, dphi) = mobilisation(sign * 0.5 * law.slip_c);
+            assert_eq!((phi, dphi), (sign * 0.5, w / law.slip_c));
+            let committed = law.commit(Some(sign * 3.0 * law.slip_c), 0.25);
+            assert_eq!(
+                (committed.elastic, committed.anchor_x),
+                (sign * law.slip_c, 0.25)
+            );
+        }
+        assert_eq!(law.commit(None, 0.25), SlipHistory::fresh(0.25));
+        assert_eq!(law.threshold(-1.0, 0.02), (Regime::Open, 0.0));
+        assert_eq!(law.threshold(1e-3, 0.02), (Regime::Coulomb, 0.5 * 1e-3));
+        assert_eq!(law.threshold(1.0, 0.02), (Regime::Orowan, 0.1 * 0.02));
+    }
+}

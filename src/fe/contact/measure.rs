@@ -1,0 +1,128 @@
+//! What a converged state is worth on the curve: its point (contact half-width, contact
+//! fraction and patches, mean pressure from the contact forces and from the slab reaction, slab
+//! displacement) and its
+//! deformed state with the contact tractions.
+
+use crate::fe::contact::edge_rule::{edge_position, loaded_edge_node};
+use crate::fe::contact::patches::{contact_fraction, contact_patches};
+use crate::fe::model::{Model, State};
+use crate::fe::newton::assembly::Assembly;
+use crate::fe::{CurvePoint, DeformedState, SolveOptions};
+
+/// The modelled width, half a wavelength (units of λ): the mean pressure is a force over it.
+const HALF_WAVELENGTH: f64 = 0.5;
+
+/// `p̄/E*` from the contact tractions: the vertical components of the contact forces, which
+/// at equilibrium are the internal forces `∂Π/∂y` of the active nodes, over half a wavelength.
+pub(crate) fn mean_pressure_over_estar(model: &Model, st: &State, grad: &[f64], estar: f64) -> f64 {
+    model.multipliers(st, grad).iter().sum::<f64>() / HALF_WAVELENGTH / estar
+}
+
+/// Where a measured point's contact half-width `a/λ` lies.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum EdgeAt {
+    /// In the element before this contact-face node (the node an edge event brought onto the
+    /// indenter, touching with zero force, or the one after the last loaded node;
+    /// [`edge_position`]).
+    Node(usize),
+    /// At the outer edge of the outermost contact patch ([`contact_patches`]): the extent of
+    /// the contact of a profile, whose patches need not reach from the peak. With the node of
+    /// the event that brought it onto the indenter (touching with zero force), if any.
+    OutermostPatch(Option<usize>),
+}
+
+/// What [`measure`] finds in a converged state.
+pub(crate) struct Measured {
+    /// Its point on the curve.
+    pub(crate) point: CurvePoint,
+    /// Its internal forces `∂Π/∂x`.
+    pub(crate) grad: Vec<f64>,
+    /// Its contact patches ([`contact_patches`]), which the point counts and sums.
+    pub(crate) patches: Vec<[f64; 2]>,
+}
+
+/// The point of a converged state with its contact half-width where `edge` says, its internal
+/// forces and its contact patches.
+pub(crate) fn measure(
+    model: &Model,
+    asm: &mut Assembly,
+    st: &State,
+    estar: f64,
+    edge: EdgeAt,
+    opts: &SolveOptions,
+) -> Measured {
+    let f = asm
+        .assemble(model, st, false)
+        .expect("converged state is not inverted");
+    let p_tr = mean_pressure_over_estar(model, st, &f.grad, estar);
+    let p_re = model.slab_reaction(&f.grad) / HALF_WAVELENGTH / estar;
+    let event = match edge {
+        EdgeAt::Node(k) => Some(k),
+        EdgeAt::OutermostPatch(event) => event,
+    };
+    let patches = contact_patches(model, st, &f.grad, opts, event);
+    let a_over_lambda = match edge {
+        EdgeAt::Node(k) => edge_position(model, st, k, opts.edge_rule),
+        EdgeAt::OutermostPatch(_) => patches.last().map_or(0.0, |p| p[1]),
+    };
+    Measured {
+        point: CurvePoint {
+            a_over_lambda,
+            p_over_estar: p_tr,
+            p_over_estar_reaction: p_re,
+            slab_displacement_over_lambda: st.d,
+            newton_iterations: 0,
+            active_nodes: st.active.iter().filter(|&&b| b).count(),
+            contact_fraction: contact_fraction(&patches),
+            patches: patches.len(),
+        },
+        grad: f.grad,
+        patches,
+    }
+}
+
+/// [`measure`] for a converged state that is not an edge event: the edge in the last loaded
+/// element ([`loaded_edge_node`]) for a sinusoid, of the outermost patch for a profile.
+pub(crate) fn measure_between_events(
+    model: &Model,
+    asm: &mut Assembly,
+    st: &State,
+    estar: f64,
+    opts: &SolveOptions,
+) -> Measured {
+    let f = asm
+        .assemble(model, st, false)
+        .expect("converged state is not inverted");
+    let edge = if model.indenter.profile.is_sinusoid() {
+        EdgeAt::Node(loaded_edge_node(model, st, &f.grad, opts.multiplier_rtol))
+    } else {
+        EdgeAt::OutermostPatch(None)
+    };
+    measure(model, asm, st, estar, edge, opts)
+}
+
+/// The deformed state and its contact tractions: normal and tangential nodal contact
+/// forces ([`Model::normal_forces`], [`Model::tangential_forces`]) over each node's
+/// tributary length on the deformed face.
+pub(crate) fn deformed_state(model: &Model, st: &State, grad: &[f64], estar: f64) -> DeformedState {
+    let normal = model.normal_forces(st, grad);
+    let tangential = model.tangential_forces(st, grad);
+    let b = &model.mesh.bottom;
+    let n = b.len();
+    let pos = |k: usize| st.x[b[k]];
+    let seg = |k: usize| {
+        let (p, q) = (pos(k), pos(k + 1));
+        ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)).sqrt()
+    };
+    let trib = |k: usize| {
+        0.5 * (if k > 0 { seg(k - 1) } else { 0.0 } + if k + 1 < n { seg(k) } else { 0.0 })
+    };
+    DeformedState {
+        nodes: st.x.clone(),
+        quads: model.mesh.quads.clone(),
+        bottom: b.clone(),
+        in_contact: st.active.clone(),
+        contact_pressure_over_estar: (0..n).map(|k| normal[k] / trib(k) / estar).collect(),
+        contact_shear_over_estar: (0..n).map(|k| tangential[k] / trib(k) / estar).collect(),
+    }
+}

@@ -1,0 +1,81 @@
+//! The contact of a converged state as patches: maximal runs of loaded contact-face nodes,
+//! each with its two edges placed by the edge rule, and the contact fraction they add up to.
+//!
+//! A node is loaded when its vertical contact multiplier `λ` is clearly positive (above
+//! `multiplier_rtol` times the largest, as [`crate::fe::contact::edge_rule::loaded_edge_node`] reads it),
+//! except the node of an event, which touches with zero force by construction (its force is
+//! the remainder of the event's gap tolerance, far above `multiplier_rtol`).
+//! A run of loaded nodes `i₀ … i₁` (face order, increasing `X`) is one patch:
+//! * its right edge lies in `[x_{i₁}, x_{i₁+1}]` and its left edge in `[x_{i₀−1}, x_{i₀}]`
+//!   (current positions), each at the edge rule's fraction of the element measured from the
+//!   loaded node ([`crate::fe::EdgeRule::fraction`]; a rule that fits gaps places the right edge of the
+//!   patch at the peak as [`edge_position`] does and uses
+//!   [`crate::fe::contact::edge_rule::DISCRETE_EDGE_FRACTION`] for the other edges, which its fits do not
+//!   cover);
+//! * a patch that reaches a symmetry line (the peak node 0 at `x = 0`, the valley node at
+//!   `x = ½`) has its edge there: the patch continues in the mirror image.
+//!
+//! The contact fraction is the total contact length over λ: the patches of the half
+//! wavelength `[0, ½]` and their mirror images, `2 Σ (end − start)`; `2a/λ` for the single
+//! patch `[0, a]` of a sinusoid.
+
+use crate::fe::contact::edge_rule::edge_position;
+use crate::fe::model::{Model, State};
+use crate::fe::SolveOptions;
+
+/// The contact patches of `st` (with internal forces `grad`) in `[0, ½]`, in order of `x`,
+/// each `[start, end]` (units of λ, current positions); `event` is the node of the event that
+/// produced `st`, if any.
+pub(crate) fn contact_patches(
+    model: &Model,
+    st: &State,
+    grad: &[f64],
+    opts: &SolveOptions,
+    event: Option<usize>,
+) -> Vec<[f64; 2]> {
+    let rule = opts.edge_rule;
+    let lam = model.multipliers(st, grad);
+    let scale = lam.iter().fold(0.0_f64, |m, l| m.max(l.abs()));
+    let loaded: Vec<bool> = lam
+        .iter()
+        .enumerate()
+        .map(|(i, &l)| scale > 0.0 && l > opts.multiplier_rtol * scale && event != Some(i))
+        .collect();
+    let b = &model.mesh.bottom;
+    let last = b.len() - 1;
+    let x = |i: usize| st.x[b[i]][0];
+    let phi = |loaded: usize, free: usize| rule.fraction(model, st, loaded, free);
+    let mut patches = Vec::new();
+    let mut i = 0;
+    while i <= last {
+        if !loaded[i] {
+            i += 1;
+            continue;
+        }
+        let i0 = i;
+        while i < last && loaded[i + 1] {
+            i += 1;
+        }
+        let i1 = i;
+        let start = if i0 == 0 {
+            x(0)
+        } else {
+            x(i0) - phi(i0, i0 - 1) * (x(i0) - x(i0 - 1))
+        };
+        let end = if i1 == last {
+            x(last)
+        } else if i0 == 0 {
+            edge_position(model, st, i1 + 1, rule)
+        } else {
+            x(i1) + phi(i1, i1 + 1) * (x(i1 + 1) - x(i1))
+        };
+        patches.push([start, end]);
+        i += 1;
+    }
+    patches
+}
+
+/// Total contact length over λ of the patches of a half wavelength and their mirror images.
+pub fn contact_fraction(patches: &[[f64; 2]]) -> f64 {
+    2.0 * patches.iter().map(|p| p[1] - p[0]).sum::<f64>()
+}

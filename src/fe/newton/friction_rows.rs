@@ -1,0 +1,344 @@
+//! The friction part of an assembly, in one place (the law itself is
+//! [`crate::fe::contact::friction`]; the semismooth choice of each node's piece of the law,
+//! [`crate::fe::newton::friction_step`]): each active sliding node's friction force into its
+//! residual and, with the matrix, its friction row under either regime ([`FrictionRow`]), of
+//! which the assembled piece's row goes into the tangent, its own entry into the symmetric values
+//! and the rest as a row update ([`crate::fe::linsys`]), so that a switch of the semismooth step
+//! changes updates only. Formulas at [`crate::fe::contact::friction`].
+
+use crate::fe::contact::friction::{Branch, FrictionEval, FrictionLaw, Regime};
+use crate::fe::linsys::SparseSystem;
+use crate::fe::model::{Model, SlotMap, State};
+
+/// Where the friction of a state goes: the reduced residual, and with the matrix `∂r/∂d`, the
+/// tangent and the friction rows that the semismooth step reads.
+pub(in crate::fe) struct FrictionSinks<'a> {
+    pub(in crate::fe) resid: &'a mut [f64],
+    pub(in crate::fe) dresid_dd: &'a mut [f64],
+    /// The tangent and the friction rows (none without the matrix).
+    pub(in crate::fe) tangent: Option<(&'a mut SparseSystem, &'a mut Vec<FrictionRow>)>,
+}
+
+/// Adds the friction of every active sliding contact-face node of `st` (`grad` its internal
+/// forces, `normal_rows` the normal-force rows of the element loop, with the matrix) to `sinks`.
+pub(in crate::fe) fn add_friction(
+    model: &Model,
+    st: &State,
+    map: &SlotMap,
+    law: &FrictionLaw,
+    (grad, normal_rows): (&[f64], &[NormalForceRow]),
+    sinks: FrictionSinks<'_>,
+) {
+    let FrictionSinks {
+        resid,
+        dresid_dd,
+        mut tangent,
+    } = sinks;
+    for (k, &n) in model.mesh.bottom.iter().enumerate() {
+        if !st.active[k] || map[n][0].is_none() {
+            continue;
+        }
+        let f = model.friction_eval(st, k, grad, law);
+        resid[2 * n] += f.force;
+        let Some((sys, friction_rows)) = tangent.as_mut() else {
+            continue;
+        };
+        let row = friction_row(model, law, map, k, &f, grad, &normal_rows[k]);
+        let assembled = row.law_row(row.at, law.slip_c);
+        sys.values[sys.diag_pos[2 * n]] += assembled.own;
+        sys.add_to_row(2 * n, 2 * n, 0.0);
+        for (col, v) in assembled.others {
+            sys.add_to_row(2 * n, col, v);
+        }
+        dresid_dd[2 * n] += assembled.force_dd;
+        friction_rows.push(row);
+    }
+}
+
+/// The normal-force row `(−y_s', 1)ᵀ H[node, ·]` of an active sliding node mapped to slots
+/// (column, value), and its derivative with respect to the slab displacement `d`: the
+/// linearisation of the normal force `N` on which the Coulomb threshold `μ N` depends.
+#[derive(Clone, Debug, Default)]
+pub(in crate::fe) struct NormalForceRow {
+    pub(in crate::fe) entries: Vec<(usize, f64)>,
+    pub(in crate::fe) dd: f64,
+}
+
+/// The friction row of active sliding contact-face node `k` under either regime
+/// (formulas in [`crate::fe::contact::friction`]): Coulomb from its normal-force row, Orowan from the
+/// positions of its face neighbours.
+fn friction_row(
+    model: &Model,
+    law: &FrictionLaw,
+    map: &SlotMap,
+    k: usize,
+    f: &FrictionEval,
+    grad: &[f64],
+    normal: &NormalForceRow,
+) -> FrictionRow {
+    let n = model.mesh.bottom[k];
+    let (own_phi, own_dphi) = f.coulomb_own(law, [grad[2 * n], grad[2 * n + 1]]);
+    let mut coulomb_phi = vec![(2 * n, own_phi)];
+    coulomb_phi.extend(normal.entries.iter().map(|&(c, v)| (c, law.mu * v)));
+    let coulomb = RegimeRow {
+        per_phi: coulomb_phi,
+        w_limit: own_dphi,
+        per_phi_dd: law.mu * normal.dd,
+    };
+    let cn = map[n][0].expect("sliding slot");
+    let (own_phi, own_dphi) = f.orowan_own(law, cn);
+    let mut orowan_phi = vec![(2 * n, own_phi)];
+    for (side, m) in [k.wrapping_sub(1), k + 1].into_iter().enumerate() {
+        let Some(&nm) = model.mesh.bottom.get(m) else {
+            continue;
+        };
+        for t in 0..2 {
+            let Some(cm) = map[nm][t] else { continue };
+            orowan_phi.push((2 * nm + t, f.orowan_neighbour(law, side, cm)));
+        }
+    }
+    let orowan = RegimeRow {
+        per_phi: orowan_phi,
+        w_limit: own_dphi,
+        per_phi_dd: 0.0,
+    };
+    f.row(2 * n, coulomb, orowan)
+}
+
+/// The friction part of one active node's tangent row under one regime, per unit `φ` and
+/// `dφ/dx`: `∂(w L φ)/∂q = φ · per_phi + dφ/dx · w_limit e_x`, `∂(w L φ)/∂d = φ · per_phi_dd`
+/// (formulas at [`crate::fe::contact::friction`]). `w_limit = w L` is the regime's
+/// threshold times `w` (`μ (g_y − y_s' g_x)` in the Coulomb regime, `w τ_max ℓ` in the
+/// Orowan one), and `per_phi` its derivative: the linearisation of `w L`.
+#[derive(Clone, Debug, Default)]
+pub(in crate::fe) struct RegimeRow {
+    /// Row entries per unit `φ` (`(column, value)`); the first is the own column.
+    pub per_phi: Vec<(usize, f64)>,
+    /// `w L` (the own diagonal entry per unit `dφ/dx`).
+    pub w_limit: f64,
+    /// `∂(w L)/∂d`.
+    pub per_phi_dd: f64,
+}
+
+impl RegimeRow {
+    /// `w L` after the step `δq` (linearised).
+    fn w_limit_after(&self, step: &[f64]) -> f64 {
+        self.w_limit + self.per_phi.iter().map(|&(c, v)| v * step[c]).sum::<f64>()
+    }
+}
+
+/// The friction part of one node's tangent row, residual and `∂r/∂d` on one piece of the
+/// law ([`FrictionRow::law_row`]).
+#[derive(Clone, Debug, Default)]
+pub(in crate::fe) struct LawRow {
+    /// Own diagonal entry.
+    pub own: f64,
+    /// The other entries (`(column, value)`; a column may repeat).
+    pub others: Vec<(usize, f64)>,
+    /// `w L φ`.
+    pub force: f64,
+    /// `∂(w L φ)/∂d`.
+    pub force_dd: f64,
+}
+
+/// Where on the friction law a node lies: the threshold's regime and the return mapping's
+/// branch.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(in crate::fe) struct LawPiece {
+    /// `Open` (`N ≤ 0`, no friction), `Coulomb` or `Orowan`.
+    pub regime: Regime,
+    /// Stick, or slip either way.
+    pub slip: Branch,
+}
+
+/// The friction row of one active node's tangent under either regime and any branch of the
+/// return mapping, at the assembled state: what the semismooth Newton step needs to put
+/// the node on another piece of the law without reassembling ([`crate::fe::newton::friction_step`]).
+/// The residual is `r_x = c·g + w L φ`.
+#[derive(Clone, Debug)]
+pub(in crate::fe) struct FrictionRow {
+    /// Equation (slot) of the node's sliding unknown.
+    pub row: usize,
+    /// Trial elastic slip `e*` at the assembled state.
+    pub trial_slip: f64,
+    /// `w = √(1 + y_s'²)`.
+    pub w: f64,
+    /// The piece of the law the state lies on.
+    pub at: LawPiece,
+    /// The row under the Coulomb regime, `L = μ N`.
+    pub coulomb: RegimeRow,
+    /// The row under the Orowan regime, `L = τ_max ℓ`.
+    pub orowan: RegimeRow,
+}
+
+impl FrictionRow {
+    /// The row of `regime` (none when open).
+    fn regime_row(&self, regime: Regime) -> Option<&RegimeRow> {
+        match regime {
+            Regime::Open => None,
+            Regime::Coulomb => Some(&self.coulomb),
+            Regime::Orowan => Some(&self.orowan),
+        }
+    }
+
+    /// The node's friction on piece `on` of the law at the assembled state (the branch's
+    /// affine law at `e*`; nothing when open).
+    ///
+    /// The force `w L φ` is a product: its linearisation is `φ δ(w L) + w L δφ`. On the stick
+    /// branch of a node that lies beyond the band (a sliding node that the semismooth step
+    /// puts on stick), the affine `φ = e*/e_c` is far above 1 (60 at AR 0.3 near the edge),
+    /// and `φ δ(w L)` would tie the node's row to 60 times its threshold's sensitivity (60 μ
+    /// times the normal force's row in the Coulomb regime), though wherever the step lands
+    /// on that branch `|φ| ≤ 1`: with the affine factor the Newton step is several element
+    /// lengths long and the line search cuts it to a small fraction. The factor of `δ(w L)`
+    /// is therefore `φ` clamped to `[−1, 1]`, the value it has at any landing point on the
+    /// branch; the force and `δφ` keep the affine law. Inside the band (every assembled row)
+    /// nothing changes (docs/performance.md, frictional speed).
+    pub(in crate::fe) fn law_row(&self, on: LawPiece, slip_c: f64) -> LawRow {
+        let Some(r) = self.regime_row(on.regime) else {
+            return LawRow::default();
+        };
+        let (phi, dphi) = on.slip.mobilisation(self.trial_slip, slip_c, self.w);
+        let phi_landed = phi.clamp(-1.0, 1.0);
+        let (own, others) = r.per_phi.split_first().expect("the own column first");
+        LawRow {
+            own: phi_landed * own.1 + dphi * r.w_limit,
+            others: others.iter().map(|&(c, v)| (c, phi_landed * v)).collect(),
+            force: phi * r.w_limit,
+            force_dd: phi_landed * r.per_phi_dd,
+        }
+    }
+
+    /// The regime to assume after the step `δq`: the smaller of the linearised thresholds
+    /// `w L` of the Coulomb and Orowan regimes (the rule of [`FrictionLaw::eval`]). An open
+    /// node (`N ≤ 0`, released by the active-set loop after the solve) stays open, and a
+    /// node stays in its regime where the step would open it: switching into and out of
+    /// the open regime too made the choice cost more iterations (docs/performance.md,
+    /// frictional speed).
+    pub(in crate::fe) fn regime_after(&self, step: &[f64]) -> Regime {
+        let coulomb = self.coulomb.w_limit_after(step);
+        let orowan = self.orowan.w_limit_after(step);
+        match self.at.regime {
+            Regime::Open => Regime::Open,
+            _ if coulomb <= 0.0 => self.at.regime,
+            _ if coulomb <= orowan => Regime::Coulomb,
+            _ => Regime::Orowan,
+        }
+    }
+
+    /// The change of the row's entries, of `r_x` and of `∂r_x/∂d` when piece `to` of the
+    /// law replaces the assembled one: `(entries, Δr_x, Δ∂r_x/∂d)`.
+    pub(in crate::fe) fn switched(
+        &self,
+        to: LawPiece,
+        slip_c: f64,
+    ) -> (Vec<(usize, f64)>, f64, f64) {
+        let (new, old) = (self.law_row(to, slip_c), self.law_row(self.at, slip_c));
+        let mut entries = vec![(self.row, new.own - old.own)];
+        entries.extend(new.others);
+        entries.extend(old.others.into_iter().map(|(c, v)| (c, -v)));
+        (entries, new.force - old.force, new.force_dd - old.force_dd)
+    }
+}
+
+impl FrictionEval {
+    /// The node's friction row (slot `row`) from its rows under either regime.
+    pub(in crate::fe) fn row(
+        &self,
+        row: usize,
+        coulomb: RegimeRow,
+        orowan: RegimeRow,
+    ) -> FrictionRow {
+        FrictionRow {
+            row,
+            trial_slip: self.trial_slip,
+            w: self.w,
+            at: LawPiece {
+                regime: self.regime,
+                slip: self.branch,
+            },
+            coulomb,
+            orowan,
+        }
+    }
+
+    /// Coulomb regime, own unknown (`g` the node's internal force): the entry
+    /// `μ (dφ/dx) (g_y − y_s' g_x) − μ φ y_s'' g_x` as `(per unit φ, per unit dφ/dx)`.
+    pub(in crate::fe) fn coulomb_own(&self, law: &FrictionLaw, g: [f64; 2]) -> (f64, f64) {
+        let (gx, gy) = (g[0], g[1]);
+        (-law.mu * self.c * gx, law.mu * (gy - self.s * gx))
+    }
+
+    /// Orowan regime, own unknown with slot vector `slot`: the entry
+    /// `τ_max (y_s' y_s''/w ℓ φ + w φ (∂ℓ/∂P)·c + w ℓ dφ/dx)` as
+    /// `(per unit φ, per unit dφ/dx)`.
+    pub(in crate::fe) fn orowan_own(&self, law: &FrictionLaw, slot: [f64; 2]) -> (f64, f64) {
+        let own = self.dell[1][0] * slot[0] + self.dell[1][1] * slot[1];
+        (
+            law.tau_max * (self.s * self.c / self.w * self.ell + self.w * own),
+            law.tau_max * self.w * self.ell,
+        )
+    }
+
+    /// Orowan regime, slot `slot` of the previous (`side = 0`) or next (`side = 1`)
+    /// contact-face neighbour, per unit `φ`: `w τ_max (∂ℓ/∂P_m)·c_m`.
+    pub(in crate::fe) fn orowan_neighbour(
+        &self,
+        law: &FrictionLaw,
+        side: usize,
+        slot: [f64; 2],
+    ) -> f64 {
+        let dl = self.dell[2 * side];
+        self.w * law.tau_max * (dl[0] * slot[0] + dl[1] * slot[1])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A sliding node beyond the band switched to stick: only its own diagonal (the stick
+    /// spring `w · w L/e_c`) and its force (`w L (e*/e_c − 1)`) change; the threshold's
+    /// sensitivity keeps the factor `φ = 1` of any landing point on the branch, and `∂r/∂d`
+    /// does not change ([`FrictionRow::law_row`]).
+    #[test]
+    fn stick_row_beyond_the_band_keeps_the_threshold_factor_of_the_band() {
+        let slip_c = 1e-3;
+        let regime_row = |scale: f64| RegimeRow {
+            per_phi: vec![(4, 2.0 * scale), (5, -3.0 * scale), (7, 0.5 * scale)],
+            w_limit: 0.05 * scale,
+            per_phi_dd: 0.7 * scale,
+        };
+        let at = LawPiece {
+            regime: Regime::Coulomb,
+            slip: Branch::SlipForward,
+        };
+        let row = FrictionRow {
+            row: 4,
+            trial_slip: 60.0 * slip_c,
+            w: 1.3,
+            at,
+            coulomb: regime_row(1.0),
+            orowan: regime_row(10.0),
+        };
+        let stick = LawPiece {
+            slip: Branch::Stick,
+            ..at
+        };
+        let (entries, d_resid, d_resid_dd) = row.switched(stick, slip_c);
+        let column = |c: usize| {
+            entries
+                .iter()
+                .filter(|e| e.0 == c)
+                .map(|e| e.1)
+                .sum::<f64>()
+        };
+        let spring = 1.3 * 0.05 / slip_c;
+        assert!((column(4) - spring).abs() <= 1e-12 * spring);
+        for c in [5, 7] {
+            assert!(column(c).abs() <= 1e-15, "column {c}: {}", column(c));
+        }
+        assert!((d_resid - 0.05 * 59.0).abs() <= 1e-12);
+        assert!(d_resid_dd.abs() <= 1e-15);
+    }
+}

@@ -1,0 +1,182 @@
+//! The frictional Newton step: the solve of the Newton system of the last assembled tangent,
+//! with the semismooth choice of each friction node's piece of the law.
+//!
+//! With friction, the step is a semismooth Newton step of the piecewise-smooth friction
+//! law: each node's piece of the law (threshold regime and return-mapping branch) is the
+//! one its linearised state after the step lies on, not the one of the current state. A
+//! sliding node whose trial slip after the step, `e* + w δx`, leaves its slip branch (lands
+//! in the stick band or beyond it, on the other side) is put on the stick branch, and back
+//! on its slip branch for good if its stick step lands there ([`BranchChoice::after_step`]);
+//! a node whose linearised thresholds cross takes the smaller one, Coulomb or Orowan
+//! ([`crate::fe::contact::friction::FrictionRow::regime_after`]). The rows and residuals of the new pieces replace the
+//! assembled ones ([`crate::fe::contact::friction::FrictionRow::switched`], exact inside the band: unit test in
+//! [`crate::fe::newton::assembly`]; beyond it the threshold's sensitivity keeps the band's factor,
+//! [`crate::fe::contact::friction::FrictionRow::law_row`]) and the system is solved again by Woodbury with the same
+//! factorisation (`SparseSystem::solve_switching_rows`), until the pieces agree with the
+//! step; if they have not within [`MAX_BRANCH_SWITCHES`], the assembled step is taken.
+//!
+//! Why: the slip tangent is flat, so a node whose solution lies in the narrow stick band is
+//! thrown from slip one way to slip the other and back (Newton's cycle on a saturating
+//! law), and a node near the Coulomb–Orowan crossover flips between the two thresholds; the
+//! line search then crawls through either with steps of 1/32–1/4. Both switches change the
+//! path to each equilibrium, not the equilibrium (test
+//! `semismooth_branch_choice_changes_the_path_not_the_curve` in `tests/solver/fe_friction.rs`);
+//! what they save is in docs/performance.md. Not done, because the switches cycled or cost
+//! more iterations: letting stick nodes slide when their step leaves the band, or any node
+//! take whatever branch its step lands on; switching into and out of the open regime
+//! ([`crate::fe::contact::friction::FrictionRow::regime_after`]); the switch in the predictor's load tangent.
+
+use crate::fe::contact::friction::Branch;
+use crate::fe::error::StepFail;
+use crate::fe::linsys::{LinSolveError, RowChange};
+use crate::fe::model::Model;
+use crate::fe::newton::assembly::Assembly;
+use crate::fe::newton::friction_rows::LawPiece;
+use crate::fe::SolveOptions;
+
+/// Most changed solves per Newton step in the semismooth choice of the friction branches.
+/// The choice settles in one or two changes where it settles; a cap, not tuned: beyond it
+/// the assembled step is taken.
+const MAX_BRANCH_SWITCHES: usize = 8;
+
+/// Solve the Newton system of iteration `iteration` on the last assembled tangent (`asm`),
+/// `rhs[0] = −r` and, if present, `rhs[1] = −∂r/∂d`; `direction` maps the solutions to the
+/// step `δq` (for the bordered solve, a combination of the two). With friction and
+/// [`SolveOptions::semismooth_friction`], the pieces of the friction law are chosen by where
+/// the step lands (module documentation); otherwise the assembled tangent is solved as it
+/// is. A failed solve ends the Newton solve ([`StepFail::Linear`]).
+pub(crate) fn solve_newton_step(
+    model: &Model,
+    asm: &mut Assembly,
+    opts: &SolveOptions,
+    rhs: &mut [Vec<f64>],
+    iteration: usize,
+    direction: impl Fn(&[Vec<f64>]) -> Vec<f64>,
+) -> Result<(), StepFail> {
+    let failed = |e: LinSolveError| StepFail::Linear {
+        iteration,
+        message: e.to_string(),
+    };
+    let law = match model.friction {
+        Some(law) if opts.semismooth_friction => law,
+        _ => return asm.sys.solve(rhs).map_err(failed),
+    };
+    let rows = &asm.friction_rows;
+    let with_load_column = rhs.len() > 1;
+    let mut assumed: Vec<LawPiece> = rows.iter().map(|r| r.at).collect();
+    let mut choices: Vec<BranchChoice> = rows
+        .iter()
+        .map(|r| BranchChoice::assembled(r.at.slip))
+        .collect();
+    let switching = asm
+        .sys
+        .solve_switching_rows(rhs, MAX_BRANCH_SWITCHES, |solutions| {
+            let step = direction(solutions);
+            let mut landed = assumed.clone();
+            for (i, r) in rows.iter().enumerate() {
+                let slip = Branch::of(r.trial_slip + r.w * step[r.row], law.slip_c);
+                choices[i] = choices[i].after_step(r.at.slip, slip);
+                landed[i] = LawPiece {
+                    regime: r.regime_after(&step),
+                    slip: choices[i].assumed,
+                };
+            }
+            if landed == assumed {
+                return None;
+            }
+            assumed = landed;
+            let changes = rows
+                .iter()
+                .zip(&assumed)
+                .filter(|(r, &b)| r.at != b)
+                .map(|(r, &b)| {
+                    let (entries, d_resid, d_resid_dd) = r.switched(b, law.slip_c);
+                    let mut rhs = vec![-d_resid];
+                    if with_load_column {
+                        rhs.push(-d_resid_dd);
+                    }
+                    RowChange {
+                        row: r.row,
+                        entries,
+                        rhs,
+                    }
+                })
+                .collect();
+            Some(changes)
+        });
+    switching.map(|_| ()).map_err(failed)
+}
+
+/// One node's return-mapping branch in the semismooth choice of a Newton step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct BranchChoice {
+    /// The branch assumed for the step.
+    assumed: Branch,
+    /// The node went back to its assembled slip branch: the choice is final.
+    settled: bool,
+}
+
+impl BranchChoice {
+    /// The start of the choice: the branch of the assembled state.
+    fn assembled(at: Branch) -> Self {
+        Self {
+            assumed: at,
+            settled: false,
+        }
+    }
+
+    /// The choice after a step that lands the node on `landed`, its assembled state being
+    /// on `at`:
+    /// - a sliding node whose step leaves its slip branch (for the stick band or the other
+    ///   way) is put on the stick branch;
+    /// - a node so put on the stick branch whose stick step lands back on the slip branch it
+    ///   came from returns to that branch for good: neither branch's step is consistent
+    ///   (the linearised node sits at the band's edge), and the assembled one is kept;
+    /// - a stick node stays stuck (letting it slide when its step leaves the band made the
+    ///   choice cycle or cost more iterations).
+    ///
+    /// Each node thus switches at most twice, so the choice ends. Returning to the slip
+    /// branch, rather than keeping the stick branch in the second case, saves tangent
+    /// assemblies (docs/performance.md).
+    fn after_step(self, at: Branch, landed: Branch) -> Self {
+        if self.settled || landed == self.assumed || at == Branch::Stick {
+            return self;
+        }
+        match self.assumed {
+            Branch::Stick if landed == at => Self {
+                assumed: at,
+                settled: true,
+            },
+            Branch::Stick => self,
+            _ => Self::assembled(Branch::Stick),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The semismooth branch choice: a sliding node whose step leaves its slip branch goes
+    /// on stick; back to its slip branch for good if its stick step lands there again; a
+    /// stick node stays stuck; the choice ends.
+    #[test]
+    fn branch_choice_switches_a_node_at_most_twice() {
+        use Branch::{SlipBackward, SlipForward, Stick};
+        let sliding = BranchChoice::assembled(SlipForward);
+        assert_eq!(sliding.after_step(SlipForward, SlipForward), sliding);
+        let stuck = sliding.after_step(SlipForward, Stick);
+        assert_eq!(stuck.assumed, Stick);
+        assert_eq!(sliding.after_step(SlipForward, SlipBackward).assumed, Stick);
+        assert_eq!(stuck.after_step(SlipForward, SlipBackward), stuck);
+        let back = stuck.after_step(SlipForward, SlipForward);
+        assert_eq!(back.assumed, SlipForward);
+        for landed in [Stick, SlipBackward, SlipForward] {
+            assert_eq!(back.after_step(SlipForward, landed), back);
+        }
+        let sticking = BranchChoice::assembled(Stick);
+        for landed in [SlipBackward, SlipForward] {
+            assert_eq!(sticking.after_step(Stick, landed), sticking);
+        }
+    }
+}

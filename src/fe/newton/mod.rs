@@ -1,0 +1,332 @@
+//! Newton's method at a fixed active set: the plain step, and the bordered step of an edge
+//! event in which the slab displacement is an unknown too.
+//!
+//! Both use the consistent tangent of the reduced problem ([`crate::fe::newton::assembly`]), solved by
+//! [`crate::fe::newton::friction_step`] (the factorisations are described in [`crate::fe::linsys`]), and one
+//! backtracking [`line_search`]: on the energy `Π` (Armijo) or, if the Newton direction is
+//! not a descent direction or the problem has friction, on a residual merit. Inverted trial
+//! configurations (`J ≤ 0`) are backtracked. Convergence: `‖r‖∞ ≤ rtol · f_e + atol`, `f_e`
+//! the largest element-level nodal force (the round-off scale of the assembled residual) and
+//! `atol = residual_atol · (G + κ) λ`; an iteration whose correction is below
+//! `increment_atol` (round-off of the positions) also ends the iteration.
+
+pub mod active_set;
+pub mod assembly;
+pub mod friction_rows;
+pub mod friction_step;
+
+use crate::fe::error::StepFail;
+use crate::fe::model::{Model, State};
+use crate::fe::newton::assembly::{Assembly, Forces};
+use crate::fe::newton::friction_step::solve_newton_step;
+use crate::fe::{Kinematics, SolveOptions};
+
+/// Sufficient-decrease constant `c` of the backtracking line search, in the energy
+/// Armijo test `Π(α) ≤ Π₀ + c α r·δ` and in the merit test `m(α) < (1 − c α) m₀`: the
+/// customary value (Nocedal & Wright, *Numerical Optimization*, §3.1), small enough that
+/// the full Newton step passes wherever Newton converges.
+const ARMIJO_C: f64 = 1e-4;
+
+/// Slack of the energy Armijo test relative to `|Π₀|`. Round-off argument: `Π` is a sum
+/// of ~10³ element energies (1152 on the default mesh), each exact to about one ulp, so it
+/// carries a relative error up to `N ε ≈ 10⁻¹³`; near convergence the energy change of a
+/// correct step drops below that and would be rejected without the slack.
+const ENERGY_ROUNDOFF_SLACK: f64 = 1e-13;
+
+/// Step-length factor per backtracking step (halving: [`SolveOptions::max_line_search`]
+/// and [`SolveOptions::max_edge_line_search`] count halvings).
+const LINE_SEARCH_BACKTRACK: f64 = 0.5;
+
+/// Residual bound of Newton convergence, `rtol · f_e + residual_atol · (G + κ)`, with
+/// `force_scale = f_e` the largest element-level nodal force.
+pub(crate) fn residual_tolerance(
+    model: &Model,
+    opts: &SolveOptions,
+    rtol: f64,
+    force_scale: f64,
+) -> f64 {
+    let atol = opts.residual_atol * (model.mat.g + model.mat.kappa);
+    rtol * force_scale + atol
+}
+
+pub(crate) fn l2_norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+pub(crate) fn inf_norm(v: &[f64]) -> f64 {
+    v.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
+}
+
+/// What a line-search trial must decrease.
+pub(crate) enum Decrease<'a> {
+    /// The energy, Armijo: `Π(α) ≤ Π₀ + c α slope + ε |Π₀|` with `slope = r·δ < 0`
+    /// ([`ARMIJO_C`], [`ENERGY_ROUNDOFF_SLACK`]).
+    Energy {
+        /// `Π₀`.
+        initial: f64,
+        /// Directional derivative `r·δ` of the energy along the step.
+        slope: f64,
+    },
+    /// A merit `m(trial, forces)`: `m(α) < (1 − c α) m₀`.
+    Merit {
+        /// `m₀`.
+        initial: f64,
+        /// The merit of a trial state given its forces.
+        merit: &'a dyn Fn(&Model, &State, &Forces) -> f64,
+    },
+    /// Nothing: the step is exact (quadratic energy); the first non-inverted trial is
+    /// taken.
+    Exact,
+}
+
+impl Decrease<'_> {
+    fn accepts(&self, model: &Model, trial: &State, forces: &Forces, alpha: f64) -> bool {
+        match self {
+            Decrease::Energy { initial, slope } => {
+                forces.energy
+                    <= initial + ARMIJO_C * alpha * slope + ENERGY_ROUNDOFF_SLACK * initial.abs()
+            }
+            Decrease::Merit { initial, merit } => {
+                merit(model, trial, forces) < (1.0 - ARMIJO_C * alpha) * initial
+            }
+            Decrease::Exact => true,
+        }
+    }
+}
+
+/// Backtracking line search: the first of the trial states `trial_at(α)`,
+/// `α = 1, ½, ¼, …` (at most `max_trials`), that is not inverted and satisfies
+/// `decrease`; `None` if there is none. The forces of the accepted state stay cached in
+/// the model for the next convergence check.
+pub(crate) fn line_search(
+    model: &Model,
+    asm: &mut Assembly,
+    max_trials: usize,
+    trial_at: impl Fn(&Model, f64) -> State,
+    decrease: Decrease<'_>,
+) -> Option<State> {
+    let mut alpha = 1.0;
+    for _ in 0..max_trials {
+        let trial = trial_at(model, alpha);
+        if let Some(f) = asm.assemble(model, &trial, false) {
+            if decrease.accepts(model, &trial, &f, alpha) {
+                return Some(trial);
+            }
+        }
+        alpha *= LINE_SEARCH_BACKTRACK;
+    }
+    None
+}
+
+/// Newton iterations at a fixed active set. Returns the number of iterations.
+pub(crate) fn newton(
+    model: &Model,
+    asm: &mut Assembly,
+    st: &mut State,
+    opts: &SolveOptions,
+    rtol: f64,
+) -> Result<usize, StepFail> {
+    let mut last_res = f64::NAN;
+    for it in 0..=opts.max_newton_iterations {
+        // convergence check on the forces alone (cached after the line search), the
+        // matrix only when another iteration follows
+        let Some(f) = asm.assemble(model, st, false) else {
+            return Err(StepFail::Inverted {
+                iteration: it,
+                residual: last_res,
+            });
+        };
+        let res = inf_norm(&f.resid);
+        last_res = res;
+        if res <= residual_tolerance(model, opts, rtol, f.force_scale) {
+            return Ok(it);
+        }
+        if it == opts.max_newton_iterations || !res.is_finite() {
+            break;
+        }
+        let f = asm
+            .assemble(model, st, true)
+            .expect("state assembled above is not inverted");
+        let mut rhs = vec![f.resid.iter().map(|r| -r).collect::<Vec<f64>>()];
+        solve_newton_step(model, asm, opts, &mut rhs, it, |x| x[0].clone())?;
+        let dq = rhs.pop().expect("one right-hand side");
+        if inf_norm(&dq) <= opts.increment_atol {
+            // correction below the round-off of the positions: converged
+            *st = model.updated(st, &dq, 1.0);
+            return Ok(it + 1);
+        }
+        if model.kin == Kinematics::Linear && model.is_potential() {
+            // quadratic energy: the Newton step is exact
+            *st = model.updated(st, &dq, 1.0);
+            continue;
+        }
+        let slope: f64 = f.resid.iter().zip(&dq).map(|(r, d)| r * d).sum();
+        let residual_norm = |_: &Model, _: &State, ft: &Forces| l2_norm(&ft.resid);
+        let decrease = if slope < 0.0 && model.is_potential() {
+            Decrease::Energy {
+                initial: f.energy,
+                slope,
+            }
+        } else {
+            Decrease::Merit {
+                initial: l2_norm(&f.resid),
+                merit: &residual_norm,
+            }
+        };
+        let trial_at = |m: &Model, alpha: f64| m.updated(st, &dq, alpha);
+        match line_search(model, asm, opts.max_line_search, trial_at, decrease) {
+            Some(t) => *st = t,
+            None => {
+                return Err(StepFail::Diverged {
+                    iteration: it,
+                    residual: res,
+                    reason: "line search found no acceptable step".into(),
+                })
+            }
+        }
+    }
+    Err(StepFail::Diverged {
+        iteration: opts.max_newton_iterations,
+        residual: last_res,
+        reason: "maximum Newton iterations reached".into(),
+    })
+}
+
+/// The bordered solve converges the target's gap to this fraction of the event
+/// tolerance, so that its result passes the event's acceptance test `|g_k| ≤ tol` with a
+/// margin of two. Safeguard.
+const BORDERED_GAP_FRACTION: f64 = 0.5;
+
+/// Gap tolerance of the loose passes of the bordered solve (those whose active set may
+/// still change, see [`SolveOptions::loose_residual_rtol`]) over that of the tight pass:
+/// they only need to settle the active set; the confirming pass converges the gap
+/// tightly. Safeguard value, not tuned.
+const LOOSE_GAP_FACTOR: f64 = 100.0;
+
+/// Smallest `|∇c·z₂| = |∂g_k/∂d|` (dimensionless) the bordered step divides by: guards
+/// the division against an exact zero (a target node that does not move with the slab).
+/// Safeguard, far below any rate met in practice and above the underflow threshold of
+/// doubles.
+const INSENSITIVE_GAP_RATE: f64 = 1e-300;
+
+/// Newton iterations for the edge event on node `k` at a fixed active set: the slab
+/// displacement `d` is an extra unknown and the extra equation is the gap of node `k`
+/// (held free), `c(q) = 0`, converged to [`BORDERED_GAP_FRACTION`] of the event tolerance
+/// `event_tol` ([`LOOSE_GAP_FACTOR`] times that in loose passes). Bordered solve with one
+/// factorisation:
+///
+/// ```text
+/// K z₁ = −r,   K z₂ = −∂r/∂d,   δd = −(c + ∇c·z₁)/(∇c·z₂),   δq = z₁ + z₂ δd
+/// ```
+///
+/// Line search on the merit `‖r‖∞ + |∂r/∂d|∞ |c|` (forces), backtracking also on
+/// inversion; the linear frictionless problem takes the first non-inverted trial.
+pub(crate) fn newton_bordered(
+    model: &Model,
+    asm: &mut Assembly,
+    st: &mut State,
+    opts: &SolveOptions,
+    k: usize,
+    event_tol: f64,
+    rtol: f64,
+) -> Result<usize, StepFail> {
+    let gap_tol = BORDERED_GAP_FRACTION * event_tol;
+    let mut last_res = f64::NAN;
+    let mut kscale = 0.0;
+    // the residual's part of the merit: its largest entry without friction; with friction
+    // its 2-norm, so that one node's row (a stick node's stiff spring) does not decide the
+    // step alone (fewer tangent assemblies: docs/performance.md)
+    let potential = model.is_potential();
+    let residual_merit = move |r: &[f64]| if potential { inf_norm(r) } else { l2_norm(r) };
+    for it in 0..=opts.max_newton_iterations {
+        // convergence check on the forces alone (cached after the line search), the
+        // matrix only when another iteration follows
+        let Some(f) = asm.assemble(model, st, false) else {
+            return Err(StepFail::Inverted {
+                iteration: it,
+                residual: last_res,
+            });
+        };
+        let (c, _) = model.edge_constraint(st, k);
+        let res = inf_norm(&f.resid);
+        last_res = res;
+        let gtol = if rtol > opts.residual_rtol {
+            LOOSE_GAP_FACTOR * gap_tol
+        } else {
+            gap_tol
+        };
+        if res <= residual_tolerance(model, opts, rtol, f.force_scale) && c.abs() <= gtol {
+            return Ok(it);
+        }
+        if it == opts.max_newton_iterations || !res.is_finite() || !c.is_finite() {
+            break;
+        }
+        let f = asm
+            .assemble(model, st, true)
+            .expect("state assembled above is not inverted");
+        if it == 0 {
+            kscale = inf_norm(&f.dresid_dd);
+        }
+        let merit = residual_merit(&f.resid) + kscale * c.abs();
+        if !merit.is_finite() {
+            break;
+        }
+        let mut rhs = vec![
+            f.resid.iter().map(|r| -r).collect::<Vec<f64>>(),
+            f.dresid_dd.iter().map(|r| -r).collect::<Vec<f64>>(),
+        ];
+        // the bordered step `(δd, δq)` from the two solutions
+        let rate = model.gap_rate_along(st, k);
+        let bordered_step = |z1: &[f64], z2: &[f64]| {
+            let dd = -(c + rate(z1)) / rate(z2);
+            let dq: Vec<f64> = z1.iter().zip(z2).map(|(a, b)| a + b * dd).collect();
+            (dd, dq)
+        };
+        solve_newton_step(model, asm, opts, &mut rhs, it, |z| {
+            bordered_step(&z[0], &z[1]).1
+        })?;
+        let (z1, z2) = (&rhs[0], &rhs[1]);
+        let den = rate(z2);
+        if den.abs() < INSENSITIVE_GAP_RATE {
+            return Err(StepFail::Diverged {
+                iteration: it,
+                residual: res,
+                reason: "edge constraint insensitive to the slab displacement".into(),
+            });
+        }
+        let (dd, dq) = bordered_step(z1, z2);
+        let edge_merit = |m: &Model, trial: &State, ft: &Forces| {
+            let (ct, _) = m.edge_constraint(trial, k);
+            residual_merit(&ft.resid) + kscale * ct.abs()
+        };
+        let decrease = if model.kin == Kinematics::Linear && model.is_potential() {
+            Decrease::Exact
+        } else {
+            Decrease::Merit {
+                initial: merit,
+                merit: &edge_merit,
+            }
+        };
+        let trial_at = |m: &Model, alpha: f64| {
+            let mut trial = st.clone();
+            trial.d += alpha * dd;
+            m.enforce_constraints(&mut trial);
+            m.updated(&trial, &dq, alpha)
+        };
+        match line_search(model, asm, opts.max_edge_line_search, trial_at, decrease) {
+            Some(t) => *st = t,
+            None => {
+                return Err(StepFail::Diverged {
+                    iteration: it,
+                    residual: res,
+                    reason: "edge line search found no acceptable step".into(),
+                })
+            }
+        }
+    }
+    Err(StepFail::Diverged {
+        iteration: opts.max_newton_iterations,
+        residual: last_res,
+        reason: "maximum Newton iterations reached (edge solve)".into(),
+    })
+}

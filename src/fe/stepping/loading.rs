@@ -1,0 +1,512 @@
+//! The loading branch: slab-displacement stepping from one contact-edge event to the next
+//! ([`crate::fe::stepping::event_search`]; for a profile, from one node event to the next:
+//! [`crate::fe::stepping::node_events`], [`crate::fe::stepping::release_events`]), from first contact to the target
+//! contact width, contact fraction or mean pressure.
+//!
+//! Predictor: the tangent (Euler) step from the last converged state to the slab
+//! displacement at which the target node closes along that tangent, scaled by the previous
+//! event's ratio of actual to extrapolated increment. Nodes left touching with a vanishing
+//! force at the last event enter the next step active.
+
+use serde::{Deserialize, Serialize};
+use std::ops::ControlFlow;
+
+use crate::fe::contact::measure::{deformed_state, measure, EdgeAt, Measured};
+use crate::fe::error::{CurveFailure, SolveError};
+use crate::fe::model::{Model, State};
+use crate::fe::newton::active_set::{equilibrate, Hold};
+use crate::fe::newton::assembly::Assembly;
+use crate::fe::stepping::event_search::{
+    activate_touching, closing_increment, event_gap_tolerance, next_target, EventSearch,
+};
+use crate::fe::stepping::node_events::{
+    activate_touching_anywhere, earliest_touchdown, passed_touchdowns,
+};
+use crate::fe::stepping::predictor::tangent_at;
+use crate::fe::stepping::pressure_target::{land_on_pressure, Overshoot, PRESSURE_TARGET_RTOL};
+use crate::fe::stepping::release_events::first_release;
+use crate::fe::stepping::step_state::Converged;
+use crate::fe::{Curve, CurvePoint, SolveOptions};
+
+/// Bounds of the ratio of actual to tangent-extrapolated displacement increment that scales the
+/// next event's first trial. Safeguard, not tuned: one odd event (a node released and
+/// re-touching) cannot throw the next prediction far off.
+const EVENT_RATIO_MIN: f64 = 0.5;
+
+/// Upper bound of the event ratio ([`EVENT_RATIO_MIN`]).
+const EVENT_RATIO_MAX: f64 = 4.0;
+
+/// How the load steps from one contact event to the next.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Stepping {
+    /// Edge by edge for a single sinusoid (its contact is one patch growing from the peak:
+    /// the next event is the first free node beyond the edge), node events for a profile.
+    #[default]
+    Auto,
+    /// Node events ([`crate::fe::stepping::node_events`]): the next event is whichever free node touches
+    /// first, wherever it lies; a node that the step found touching before the target
+    /// becomes the target. Any profile; a single sinusoid gives the edge-by-edge curve.
+    NodeEvents,
+}
+
+/// Most times one step's target may be replaced by a node that touched before it
+/// ([`passed_touchdowns`]). Each replacement moves the event to a strictly smaller slab
+/// displacement, so the chain is short; a safeguard.
+const MAX_RETARGETS: usize = 8;
+
+/// What the load stepping carries from one edge event to the next.
+pub(crate) struct LoadPath {
+    /// Converged state of the last event, and of the one before.
+    pub(crate) cur: State,
+    pub(crate) prev: Option<State>,
+    /// Contact half-width `a/λ` of the last event.
+    pub(crate) a: f64,
+    /// Slab-displacement increment of the last event (units of λ; before the first, the
+    /// first trial).
+    pub(crate) last_increment: f64,
+    /// Ratio of the actual to the tangent-extrapolated increment of the last event.
+    pub(crate) event_ratio: f64,
+    /// Points converged so far.
+    pub(crate) points: Vec<CurvePoint>,
+    /// The contact patches of each point.
+    pub(crate) patch_edges: Vec<Vec<[f64; 2]>>,
+    /// Internal forces `∂Π/∂x` of `cur`.
+    pub(crate) grad: Vec<f64>,
+    /// The contact-face node the last event released, if it was a release.
+    pub(crate) released: Option<usize>,
+}
+
+impl LoadPath {
+    /// The undeformed state with the peak node in contact.
+    pub(crate) fn start(model: &Model, opts: &SolveOptions) -> Self {
+        Self {
+            cur: model.initial_state(),
+            prev: None,
+            a: 0.0,
+            last_increment: opts.first_step_over_amplitude * model.indenter.amplitude(),
+            event_ratio: 1.0,
+            points: Vec::new(),
+            patch_edges: Vec::new(),
+            grad: vec![0.0; 2 * model.num_nodes()],
+            released: None,
+        }
+    }
+
+    /// Move on to the converged event `st` with its point, forces and patches; `extrapolated` is
+    /// the increment the load tangent predicted for it; `released`, the node it released if it
+    /// is a release event.
+    pub(crate) fn advance(
+        &mut self,
+        st: State,
+        measured: Measured,
+        extrapolated: Option<f64>,
+        released: Option<usize>,
+    ) {
+        let Measured {
+            point,
+            grad,
+            patches,
+        } = measured;
+        self.a = point.a_over_lambda;
+        self.points.push(point);
+        self.patch_edges.push(patches);
+        self.grad = grad;
+        self.last_increment = st.d - self.cur.d;
+        if let Some(e) = extrapolated {
+            self.event_ratio = (self.last_increment / e).clamp(EVENT_RATIO_MIN, EVENT_RATIO_MAX);
+        }
+        self.prev = Some(std::mem::replace(&mut self.cur, st));
+        self.released = released;
+    }
+
+    /// The failure `error` with the points converged so far.
+    pub(crate) fn fail(self, error: SolveError) -> Box<CurveFailure> {
+        Box::new(CurveFailure {
+            error,
+            points: self.points,
+            unloading: Vec::new(),
+        })
+    }
+
+    /// The curve: the loading points, `unloading`, the last converged state and the work
+    /// done (`asm`).
+    pub(crate) fn finish(
+        self,
+        model: &Model,
+        asm: &Assembly,
+        estar: f64,
+        unloading: Vec<CurvePoint>,
+    ) -> Curve {
+        Curve {
+            final_state: deformed_state(model, &self.cur, &self.grad, estar),
+            points: self.points,
+            patch_edges: self.patch_edges,
+            unloading,
+            work: asm.work(),
+        }
+    }
+}
+
+/// Trace the load curve up to `opts.until_a_over_lambda`, one edge event per point (see
+/// [`crate::fe::stepping::event_search`] for the events, [`crate::fe::contact::edge_rule`] for the contact-edge
+/// location). `on_step` sees every converged point with a view of its state.
+pub(crate) fn trace(
+    model: &Model,
+    asm: &mut Assembly,
+    opts: &SolveOptions,
+    estar: f64,
+    on_step: &mut dyn FnMut(&CurvePoint, Converged<'_>) -> ControlFlow<()>,
+) -> Result<Curve, Box<CurveFailure>> {
+    let path = loading_branch(model, asm, opts, estar, on_step)?;
+    Ok(path.finish(model, asm, estar, Vec::new()))
+}
+
+/// The loading branch: from first contact, one edge event per point, until the contact
+/// half-width reaches `opts.until_a_over_lambda` (or, with `opts.until_p_over_estar`, until
+/// the mean pressure reaches that: the event that would overshoot it is replaced by the
+/// state on the target, [`land_on_pressure`]). `on_step` sees every converged point with a
+/// view of its state; its `Break` ends the branch with [`SolveError::Stopped`].
+pub(crate) fn loading_branch(
+    model: &Model,
+    asm: &mut Assembly,
+    opts: &SolveOptions,
+    estar: f64,
+    on_step: &mut dyn FnMut(&CurvePoint, Converged<'_>) -> ControlFlow<()>,
+) -> Result<LoadPath, Box<CurveFailure>> {
+    let mut path = LoadPath::start(model, opts);
+    let targets = Targets(opts);
+    let node_events =
+        opts.stepping == Stepping::NodeEvents || !model.indenter.profile.is_sinusoid();
+    let mut step = 1;
+    while !targets.any_reached(&path) {
+        if step > opts.max_steps {
+            let error = SolveError::TooManySteps {
+                steps: opts.max_steps,
+                a_over_lambda: path.a,
+            };
+            return Err(path.fail(error));
+        }
+        let Some((k, tangent)) = next_event_node(model, asm, opts, &mut path, node_events) else {
+            break; // full contact
+        };
+        let event = find_event(model, asm, opts, &path, k, tangent, node_events, step)
+            .and_then(|found| settle_event(model, asm, opts, &path, found, node_events, step));
+        let settled = match event {
+            Ok(settled) => settled,
+            Err(error) => return Err(path.fail(error)),
+        };
+        let Settled {
+            state: st,
+            measured,
+            extrapolated,
+            released,
+            node: k,
+        } = measure_event(model, asm, opts, estar, settled);
+        let overshot = opts
+            .until_p_over_estar
+            .filter(|&t| measured.point.p_over_estar > t);
+        let (st, measured, extrapolated) = match overshot {
+            None => (st, measured, extrapolated),
+            Some(target) => match land_between(
+                model, asm, opts, estar, &path, k, st, measured, target, step,
+            ) {
+                Ok((st, landed)) => (st, landed, None),
+                Err(error) => return Err(path.fail(error)),
+            },
+        };
+        let at = Converged {
+            model,
+            state: &st,
+            grad: &measured.grad,
+        };
+        let flow = on_step(&measured.point, at);
+        path.advance(st, measured, extrapolated, released);
+        if flow.is_break() {
+            let error = SolveError::Stopped {
+                points: path.points.len(),
+            };
+            return Err(path.fail(error));
+        }
+        if overshot.is_some() {
+            break; // on the pressure target
+        }
+        step += 1;
+    }
+    targets.check_reached(path)
+}
+
+/// The three stop targets of the loading branch: the contact width, the mean pressure and the
+/// contact fraction ([`SolveOptions`]).
+struct Targets<'a>(&'a SolveOptions);
+
+impl Targets<'_> {
+    /// The mean-pressure target, reached when loading landed on it (within its tolerance, so
+    /// possibly a hair below).
+    fn pressure_reached(&self, path: &LoadPath) -> bool {
+        match (self.0.until_p_over_estar, path.points.last()) {
+            (Some(target), Some(p)) => p.p_over_estar >= target * (1.0 - PRESSURE_TARGET_RTOL),
+            _ => false,
+        }
+    }
+
+    fn fraction_reached(&self, path: &LoadPath) -> bool {
+        match (self.0.until_contact_fraction, path.points.last()) {
+            (Some(target), Some(p)) => p.contact_fraction >= target,
+            _ => false,
+        }
+    }
+
+    /// With a contact-fraction target the contact width is no stop.
+    fn width_reached(&self, path: &LoadPath) -> bool {
+        self.0.until_contact_fraction.is_none() && path.a >= self.0.until_a_over_lambda
+    }
+
+    fn any_reached(&self, path: &LoadPath) -> bool {
+        self.width_reached(path) || self.pressure_reached(path) || self.fraction_reached(path)
+    }
+
+    /// The branch as it ended, or the error that says which target it fell short of (full
+    /// contact came first).
+    fn check_reached(&self, path: LoadPath) -> Result<LoadPath, Box<CurveFailure>> {
+        let opts = self.0;
+        if let Some(target) = opts.until_p_over_estar {
+            if !self.pressure_reached(&path) && path.a >= opts.until_a_over_lambda {
+                let error = SolveError::PressureTargetBeyondLimit {
+                    a_over_lambda: path.a,
+                    p_over_estar: path.points.last().map_or(0.0, |p| p.p_over_estar),
+                    target,
+                };
+                return Err(path.fail(error));
+            }
+        }
+        if let Some(target) = opts.until_contact_fraction {
+            if !self.fraction_reached(&path) && !self.pressure_reached(&path) {
+                let error = SolveError::ContactFractionBeyondMesh {
+                    contact_fraction: path.points.last().map_or(0.0, |p| p.contact_fraction),
+                    target,
+                };
+                return Err(path.fail(error));
+            }
+            return Ok(path);
+        }
+        if path.a < opts.until_a_over_lambda && !self.pressure_reached(&path) {
+            let error = SolveError::TargetBeyondMesh {
+                a_over_lambda: path.a,
+                target: opts.until_a_over_lambda,
+            };
+            return Err(path.fail(error));
+        }
+        Ok(path)
+    }
+}
+
+/// The next event's node and the load tangent at the last event, or `None` at full contact:
+/// edge by edge, the first free node beyond the edge (nodes skipped because they touch enter
+/// the step active); with node events, the free node that closes first along the load tangent
+/// (every touching free node enters active).
+fn next_event_node(
+    model: &Model,
+    asm: &mut Assembly,
+    opts: &SolveOptions,
+    path: &mut LoadPath,
+    node_events: bool,
+) -> Option<(usize, Option<Vec<f64>>)> {
+    if node_events {
+        activate_touching_anywhere(model, &mut path.cur, path.released);
+        let tangent = tangent_at(model, asm, opts, &path.cur);
+        let k = earliest_touchdown(model, &path.cur, tangent.as_deref())?;
+        Some((k, tangent))
+    } else {
+        let k = next_target(model, &path.cur, path.a, opts.da_target)?;
+        activate_touching(model, &mut path.cur, k);
+        Some((k, tangent_at(model, asm, opts, &path.cur)))
+    }
+}
+
+/// A found event: the state where its node touches with zero force, the node, the Newton
+/// iterations spent, and the increment the load tangent predicted.
+struct Found {
+    state: State,
+    node: usize,
+    iterations: usize,
+    extrapolated: Option<f64>,
+}
+
+/// The slab displacement at which node `k` touches with zero force, predicted along the load
+/// tangent (scaled by the previous event's ratio of actual to extrapolated increment) and found
+/// by [`EventSearch`]. With node events, a node that touched on the way came first and becomes
+/// the target ([`passed_touchdowns`], at most [`MAX_RETARGETS`] times).
+#[allow(clippy::too_many_arguments)]
+fn find_event(
+    model: &Model,
+    asm: &mut Assembly,
+    opts: &SolveOptions,
+    path: &LoadPath,
+    mut k: usize,
+    tangent: Option<Vec<f64>>,
+    node_events: bool,
+    step: usize,
+) -> Result<Found, SolveError> {
+    let mut retargets = 0;
+    loop {
+        let gap0 = model.gaps(&path.cur)[k];
+        let extrapolated = tangent
+            .as_deref()
+            .and_then(|z| closing_increment(model, &path.cur, k, gap0, z));
+        let search = EventSearch {
+            opts,
+            from: &path.cur,
+            before: path.prev.as_ref(),
+            node: k,
+            gap0,
+            gap_tol: event_gap_tolerance(model, opts, gap0),
+            tangent: tangent.clone(),
+            first_increment: extrapolated.map_or(path.last_increment, |e| e * path.event_ratio),
+            last_increment: path.last_increment,
+        };
+        let (st, iterations) = search.find(model, asm, step)?;
+        match passed_touchdowns(model, &path.cur, &st, tangent.as_deref()) {
+            Some(j) if node_events && retargets < MAX_RETARGETS => {
+                retargets += 1;
+                k = j;
+            }
+            _ => {
+                return Ok(Found {
+                    state: st,
+                    node: k,
+                    iterations,
+                    extrapolated,
+                })
+            }
+        }
+    }
+}
+
+/// An event settled in equilibrium, before it is measured: the state, where its contact edge
+/// is measured from, the node it released (a release event), the tangent's predicted increment
+/// (none for a release) and the Newton iterations so far.
+struct SettledEvent {
+    state: State,
+    edge: EdgeAt,
+    released: Option<usize>,
+    extrapolated: Option<f64>,
+    node: usize,
+    iterations: usize,
+}
+
+/// The found event in equilibrium: with node events, a contact node that the step released
+/// let go before node `k` touched, and the release is the event ([`first_release`]); else node
+/// `k` enters contact and the state is equilibrated.
+fn settle_event(
+    model: &Model,
+    asm: &mut Assembly,
+    opts: &SolveOptions,
+    path: &LoadPath,
+    found: Found,
+    node_events: bool,
+    step: usize,
+) -> Result<SettledEvent, SolveError> {
+    let Found {
+        state: mut st,
+        node: k,
+        mut iterations,
+        extrapolated,
+    } = found;
+    let release = match node_events {
+        true => first_release(model, asm, opts, &path.cur, &st, k)
+            .map_err(|f| f.into_error(step, st.d))?,
+        false => None,
+    };
+    if let Some(r) = release {
+        return Ok(SettledEvent {
+            state: r.state,
+            edge: EdgeAt::OutermostPatch(None),
+            released: Some(r.node),
+            extrapolated: None,
+            node: k,
+            iterations: iterations + r.iterations,
+        });
+    }
+    model.activate(&mut st, k);
+    model.enforce_constraints(&mut st);
+    iterations +=
+        equilibrate(model, asm, &mut st, opts, Hold::NONE).map_err(|f| f.into_error(step, st.d))?;
+    let edge = match node_events {
+        true => EdgeAt::OutermostPatch(Some(k)),
+        false => EdgeAt::Node(k),
+    };
+    Ok(SettledEvent {
+        state: st,
+        edge,
+        released: None,
+        extrapolated,
+        node: k,
+        iterations,
+    })
+}
+
+/// A settled event with its slip committed and its point measured.
+struct Settled {
+    state: State,
+    measured: Measured,
+    extrapolated: Option<f64>,
+    released: Option<usize>,
+    node: usize,
+}
+
+/// Commits the slip of a settled event and measures its point.
+fn measure_event(
+    model: &Model,
+    asm: &mut Assembly,
+    opts: &SolveOptions,
+    estar: f64,
+    event: SettledEvent,
+) -> Settled {
+    let SettledEvent {
+        state: mut st,
+        edge,
+        released,
+        extrapolated,
+        node,
+        iterations,
+    } = event;
+    model.commit_slip(&mut st);
+    let mut measured = measure(model, asm, &st, estar, edge, opts);
+    measured.point.newton_iterations = iterations;
+    Settled {
+        state: st,
+        measured,
+        extrapolated,
+        released,
+        node,
+    }
+}
+
+/// The event that overshoots the pressure target replaced by the state on it, between the last
+/// converged state and this event ([`land_on_pressure`]).
+#[allow(clippy::too_many_arguments)]
+fn land_between(
+    model: &Model,
+    asm: &mut Assembly,
+    opts: &SolveOptions,
+    estar: f64,
+    path: &LoadPath,
+    k: usize,
+    st: State,
+    measured: Measured,
+    target: f64,
+    step: usize,
+) -> Result<(State, Measured), SolveError> {
+    let event = (st.d, measured.point.p_over_estar);
+    let overshoot = Overshoot {
+        below: &path.cur,
+        below_p_over_estar: path.points.last().map_or(0.0, |p| p.p_over_estar),
+        node: k,
+        event,
+    };
+    let (st, mut landed, it) = land_on_pressure(model, asm, opts, estar, overshoot, target)
+        .map_err(|f| f.into_error(step, event.0))?;
+    landed.point.newton_iterations = measured.point.newton_iterations + it;
+    Ok((st, landed))
+}

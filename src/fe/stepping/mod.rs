@@ -1,0 +1,20 @@
+//! What one load step does: the load path from one contact event to the next.
+//!
+//! [`loading`] steps from one contact-edge event to the next, to a contact width or (with
+//! [`pressure_target`]) to a mean pressure, and [`unloading`] back to zero load;
+//! [`event_search`] finds which node touches next and at which slab displacement,
+//! [`node_events`] the same for a contact in several patches (profiles), and
+//! [`release_events`] where a contact node lets go; [`step_control`] holds the one regula falsi
+//! and the step cutter; [`predictor`] the load tangent and the predicted state of a step;
+//! [`step_state`] the deformed state of every converged point, built only for a caller that
+//! asks.
+
+pub mod event_search;
+pub mod loading;
+pub mod node_events;
+pub mod predictor;
+pub mod pressure_target;
+pub mod release_events;
+pub mod step_control;
+pub mod step_state;
+pub mod unloading;

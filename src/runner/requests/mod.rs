@@ -1,0 +1,12 @@
+//! `wavy solve` and `wavy eval` without their arguments, shared by the command line and the Python
+//! bindings: a request in the command line's names and units is checked ([`input_checks`],
+//! [`tolerance_choice`]), prepared and computed ([`solve_request`], [`eval_request`]), and
+//! returned as rows ([`solve_outcome`]) or as a [`request_error::RequestError`] whose `Display` is
+//! the command line's message.
+
+pub mod eval_request;
+pub mod input_checks;
+pub mod request_error;
+pub mod solve_outcome;
+pub mod solve_request;
+pub mod tolerance_choice;

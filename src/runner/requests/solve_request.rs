@@ -1,0 +1,390 @@
+//! `wavy solve` without its arguments: a request with the command line's names and units →
+//! the checked problem and mesh (the `--tolerance` choice included) → the error estimate's
+//! coarser curve → one finite-element curve, row by row, → a [`SolveOutcome`] with the rows and
+//! what the solve cost. The command line streams the rows as CSV; the Python bindings collect
+//! them into arrays; both call these functions, so values and messages are the same.
+
+use crate::accuracy::measured::{self, Choice};
+use crate::defaults;
+use crate::fe::{
+    self, CurvePoint, Kinematics, LayerProblem, LoadDirection, MeshLevel, SolveOptions, SolveWork,
+};
+use crate::profile::{FinerHarmonics, Profile};
+use crate::runner::requests::input_checks::{non_negative, out_of_range, positive, InputError};
+use crate::runner::requests::request_error::RequestError;
+use crate::runner::requests::solve_outcome::{ExtraColumn, SolveOutcome, SolveRow};
+use crate::runner::sweep::fe_cases::{FeCase, FePhysics};
+use crate::vtk::{write_series, VtkStep};
+use std::ops::ControlFlow;
+use std::path::Path;
+
+/// What `wavy solve` is asked, field by field its flags (`ar` is `--ar`, …), in its units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolveRequest {
+    /// Aspect ratio Δ/λ (> 0): of the sinusoid, or of the profile's big wave (order 1).
+    pub ar: f64,
+    /// The profile's finer harmonics (`--profile 1:AR,n:AR_n,…` beyond its first pair; none
+    /// for a sinusoid).
+    pub finer_harmonics: FinerHarmonics,
+    /// Interfacial shear strength τ_max in MPa (≥ 0; 0 = frictionless).
+    pub tau_max_mpa: f64,
+    /// Friction coefficient μ (≥ 0).
+    pub mu: f64,
+    /// Plane-strain modulus E* in MPa (> 0).
+    pub estar_mpa: f64,
+    /// Bulk over shear modulus κ/G (> 0).
+    pub kappa_over_g: f64,
+    /// Layer thickness over wavelength h/λ (> 0).
+    pub thickness_over_lambda: f64,
+    pub kinematics: Kinematics,
+    /// The mesh (`None`: the default mesh, or the one `tolerance` chooses; both is refused).
+    pub mesh: Option<MeshLevel>,
+    /// The coarsest mesh whose measured relative error is at most this (in (0, 1)).
+    pub tolerance: Option<f64>,
+    /// Also solve the next coarser mesh and estimate each point's relative error.
+    pub error_estimate: bool,
+    /// Load until a/λ reaches this (in (0, 0.5)); with `until_p_over_estar`, the cap on the way.
+    pub until_a_over_lambda: f64,
+    /// Instead: load until p̄/E* is this (> 0).
+    pub until_p_over_estar: Option<f64>,
+    /// Instead: load until the contact fraction (contact length over λ) is this (in (0, 1)).
+    pub until_contact_fraction: Option<f64>,
+    /// Then unload back to zero load.
+    pub unload: bool,
+}
+
+impl SolveRequest {
+    /// A request at aspect ratio `ar` with every other field at the command line's default.
+    pub fn new(ar: f64) -> Self {
+        SolveRequest {
+            ar,
+            finer_harmonics: FinerHarmonics::NONE,
+            tau_max_mpa: 0.0,
+            mu: defaults::friction_coefficient(),
+            estar_mpa: defaults::fe_estar_mpa(),
+            kappa_over_g: defaults::kappa_over_g(),
+            thickness_over_lambda: defaults::thickness_over_lambda(),
+            kinematics: Kinematics::Finite,
+            mesh: None,
+            tolerance: None,
+            error_estimate: false,
+            until_a_over_lambda: SolveOptions::default().until_a_over_lambda,
+            until_p_over_estar: None,
+            until_contact_fraction: None,
+            unload: false,
+        }
+    }
+
+    /// A request for the profile `profile` with every other field at the command line's
+    /// default.
+    pub fn with_profile(profile: &Profile) -> Self {
+        SolveRequest {
+            finer_harmonics: profile.finer,
+            ..Self::new(profile.aspect_ratio)
+        }
+    }
+
+    /// Every input checked (in the command line's order), the mesh chosen: the solve to run.
+    pub fn prepare(&self) -> Result<PreparedSolve, RequestError> {
+        positive("--ar", self.ar)?;
+        positive("--estar-mpa", self.estar_mpa)?;
+        positive("--kappa-over-g", self.kappa_over_g)?;
+        positive("--thickness-over-lambda", self.thickness_over_lambda)?;
+        non_negative("--tau-max-mpa", self.tau_max_mpa)?;
+        non_negative("--mu", self.mu)?;
+        let x = self.until_a_over_lambda;
+        if !(x.is_finite() && x > 0.0 && x < 0.5) {
+            return Err(out_of_range("--until-a-over-lambda", x, "(0, 0.5)").into());
+        }
+        if let Some(p) = self.until_p_over_estar {
+            positive("--until-p-over-estar", p)?;
+        }
+        if let Some(c) = self.until_contact_fraction {
+            if !(c.is_finite() && c > 0.0 && c < 1.0) {
+                return Err(out_of_range("--until-contact-fraction", c, "(0, 1)").into());
+            }
+            if self.until_p_over_estar.is_some() {
+                return Err(refused(
+                    "--until-contact-fraction",
+                    c,
+                    "cannot be used with --until-p-over-estar",
+                ));
+            }
+        }
+        if !self.finer_harmonics.is_empty() {
+            // the measured tiers and their convergence orders are a sinusoid's
+            if let Some(t) = self.tolerance {
+                return Err(refused(
+                    "--tolerance",
+                    t,
+                    "is measured for a single sinusoid; with --profile choose --mesh",
+                ));
+            }
+            if self.error_estimate {
+                return Err(refused(
+                    "--error-estimate",
+                    true,
+                    "is measured for a single sinusoid; not with --profile",
+                ));
+            }
+        }
+        if let (Some(mesh), Some(_)) = (self.mesh, self.tolerance) {
+            return Err(refused(
+                "--mesh",
+                mesh,
+                "cannot be used with --tolerance (which chooses the mesh)",
+            ));
+        }
+        if self.unload && self.error_estimate {
+            return Err(refused(
+                "--unload",
+                true,
+                "cannot be used with --error-estimate",
+            ));
+        }
+        let physics = FePhysics {
+            estar_mpa: self.estar_mpa,
+            thickness_over_lambda: self.thickness_over_lambda,
+            kappa_over_g: self.kappa_over_g,
+            friction_coefficient: self.mu,
+            elastic_slip_over_element: defaults::elastic_slip_over_element(),
+            kinematics: self.kinematics,
+        };
+        let (mesh, tolerance_choice) = match self.tolerance {
+            Some(t) => {
+                let (mesh, choice) = crate::runner::requests::tolerance_choice::solve_mesh(
+                    t,
+                    self.ar,
+                    self.tau_max_mpa,
+                    &physics,
+                    x,
+                )?;
+                (mesh, Some(choice))
+            }
+            None => (self.mesh.unwrap_or_default(), None),
+        };
+        let options = SolveOptions {
+            until_a_over_lambda: x,
+            until_p_over_estar: self.until_p_over_estar,
+            until_contact_fraction: self.until_contact_fraction,
+            mesh,
+            ..SolveOptions::default()
+        };
+        let case = FeCase::new(&physics, self.ar, self.tau_max_mpa, options);
+        let problem = LayerProblem {
+            finer_harmonics: self.finer_harmonics,
+            ..case.problem
+        };
+        // a profile the mesh cannot resolve is refused here, before any solve
+        if let Err(e) = fe::validate(&problem, &case.options) {
+            if matches!(
+                e,
+                fe::SolveError::ProfileUnresolved { .. } | fe::SolveError::ProfileTooSteep { .. }
+            ) {
+                return Err(InputError::Refused {
+                    flag: "--profile".into(),
+                    value: problem.profile().to_string(),
+                    reason: e.to_string(),
+                }
+                .into());
+            }
+        }
+        Ok(PreparedSolve {
+            request: *self,
+            problem,
+            options: case.options,
+            tolerance_choice,
+        })
+    }
+}
+
+/// The flag `flag` refused at `value` for `reason`.
+fn refused(flag: &str, value: impl std::fmt::Display, reason: &str) -> RequestError {
+    InputError::Refused {
+        flag: flag.into(),
+        value: value.to_string(),
+        reason: reason.into(),
+    }
+    .into()
+}
+
+/// The coarser curve of the error estimate, its element-count ratio and the convergence order.
+#[derive(Debug, Clone)]
+pub struct CoarseReference {
+    points: Vec<CurvePoint>,
+    ratio: f64,
+    order: f64,
+}
+
+impl CoarseReference {
+    fn estimate(&self, p: &CurvePoint) -> Option<f64> {
+        fe::convergence::p_at(&self.points, p.a_over_lambda).map(|pc| {
+            crate::accuracy::richardson_relative_error(pc, p.p_over_estar, self.ratio, self.order)
+        })
+    }
+}
+
+/// A checked request, ready to solve.
+#[derive(Debug, Clone)]
+pub struct PreparedSolve {
+    pub request: SolveRequest,
+    pub problem: LayerProblem,
+    pub options: SolveOptions,
+    /// With `tolerance`: the measured choice behind the mesh (the command line tells it).
+    pub tolerance_choice: Option<Choice>,
+}
+
+impl PreparedSolve {
+    /// The mesh solved.
+    pub fn mesh(&self) -> MeshLevel {
+        self.options.mesh
+    }
+
+    /// The column after the curve point's columns.
+    pub fn extra_column(&self) -> ExtraColumn {
+        match (self.request.error_estimate, self.request.unload) {
+            (true, _) => ExtraColumn::ErrorEstimate,
+            (false, true) => ExtraColumn::Branch,
+            (false, false) => ExtraColumn::None,
+        }
+    }
+
+    /// The CSV header of `wavy solve`.
+    pub fn csv_header(&self) -> String {
+        let extra = match self.extra_column() {
+            ExtraColumn::None => "",
+            ExtraColumn::ErrorEstimate => ",error_estimate",
+            ExtraColumn::Branch => ",branch",
+        };
+        format!("{}{extra}", CurvePoint::CSV_HEADER)
+    }
+
+    fn outcome(&self, rows: Vec<SolveRow>, work: SolveWork) -> SolveOutcome {
+        SolveOutcome {
+            mesh: self.mesh(),
+            unknowns: self.mesh().unknowns(),
+            extra: self.extra_column(),
+            rows,
+            work,
+        }
+    }
+
+    /// With `error_estimate`: the curve on the next coarser mesh (solved now; `keep_going` is
+    /// asked after each of its steps), else `None`.
+    pub fn coarse_reference(
+        &self,
+        keep_going: &mut dyn FnMut() -> ControlFlow<()>,
+    ) -> Result<Option<CoarseReference>, RequestError> {
+        if !self.request.error_estimate {
+            return Ok(None);
+        }
+        let mesh = self.mesh();
+        let (level, ratio) =
+            crate::accuracy::coarser_level(mesh).ok_or_else(|| InputError::Refused {
+                flag: "--error-estimate".into(),
+                value: format!("{mesh:?}"),
+                reason: "no coarser mesh of at least 4 elements along the face".into(),
+            })?;
+        let order = measured::committed()?.fe_order()?;
+        let coarse_options = SolveOptions {
+            mesh: level,
+            ..self.options
+        };
+        let solved = fe::solve_curve(&self.problem, &coarse_options, &mut |_| keep_going());
+        if let Err(f) = &solved {
+            if let fe::SolveError::Stopped { .. } = f.error {
+                return Err(RequestError::Interrupted {
+                    partial: Box::new(self.outcome(vec![], SolveWork::default())),
+                });
+            }
+        }
+        let curve = solved.map_err(|f| {
+            let reached = f.points.last().map_or(0.0, |p| p.a_over_lambda);
+            RequestError::Failed(format!(
+                "the error estimate needs the curve on the coarser mesh {}×{}, which stops at a/λ = {reached:.4}: {}; choose a finer --mesh",
+                level.counts().0,
+                level.counts().1,
+                f.error
+            ))
+        })?;
+        Ok(Some(CoarseReference {
+            points: curve.points,
+            ratio,
+            order,
+        }))
+    }
+
+    /// Solves, handing each converged row to `on_row` as soon as it is known; `Break` from
+    /// `on_row` stops the solve ([`RequestError::Interrupted`]). `coarse` is what
+    /// [`Self::coarse_reference`] returned. With `vtk`, a complete curve also writes the
+    /// deformed state of every converged point into that folder as a ParaView time series
+    /// ([`crate::vtk::write_series`]); a curve that stops short writes none.
+    pub fn run(
+        &self,
+        coarse: Option<&CoarseReference>,
+        vtk: Option<&Path>,
+        on_row: &mut dyn FnMut(&SolveRow) -> ControlFlow<()>,
+    ) -> Result<SolveOutcome, RequestError> {
+        let mut rows = vec![];
+        let mut vtk_steps: Vec<VtkStep> = vec![];
+        let mut on_step = |branch: LoadDirection, p: &CurvePoint| {
+            let row = SolveRow {
+                point: *p,
+                branch,
+                error_estimate: coarse.and_then(|c| c.estimate(p)),
+            };
+            rows.push(row);
+            on_row(&row)
+        };
+        let solved = match (vtk, self.request.unload) {
+            (Some(_), unload) => fe::solve_with_states(
+                &self.problem,
+                &self.options,
+                unload,
+                &mut |branch, p, state| {
+                    vtk_steps.push(VtkStep {
+                        direction: branch,
+                        point: *p,
+                        state: state.clone(),
+                    });
+                    on_step(branch, p)
+                },
+            ),
+            (None, true) => fe::solve_cycle(&self.problem, &self.options, &mut on_step),
+            (None, false) => fe::solve_curve(&self.problem, &self.options, &mut |p| {
+                on_step(LoadDirection::Loading, p)
+            }),
+        };
+        match solved {
+            Ok(curve) => {
+                if let Some(dir) = vtk {
+                    write_series(dir, &vtk_steps)
+                        .map_err(|e| RequestError::Failed(e.to_string()))?;
+                }
+                Ok(self.outcome(rows, curve.work))
+            }
+            Err(failure) if matches!(failure.error, fe::SolveError::Stopped { .. }) => {
+                Err(RequestError::Interrupted {
+                    partial: Box::new(self.outcome(rows, SolveWork::default())),
+                })
+            }
+            Err(failure) => Err(RequestError::Stopped {
+                error: failure.error,
+                partial: Box::new(self.outcome(rows, SolveWork::default())),
+            }),
+        }
+    }
+}
+
+/// The whole request: prepare, the coarser curve if asked, the solve; `on_row` as in
+/// [`PreparedSolve::run`] (also asked, with no row, after each step of the coarser curve), and
+/// `vtk` as there.
+pub fn solve(
+    request: &SolveRequest,
+    vtk: Option<&Path>,
+    on_row: &mut dyn FnMut(Option<&SolveRow>) -> ControlFlow<()>,
+) -> Result<SolveOutcome, RequestError> {
+    let prepared = request.prepare()?;
+    let coarse = prepared.coarse_reference(&mut || on_row(None))?;
+    prepared.run(coarse.as_ref(), vtk, &mut |row| on_row(Some(row)))
+}

@@ -1,0 +1,472 @@
+//! The `wavy` binary driven as a user would: `eval` and `solve`, and every kind of bad flag,
+//! with the message text checked and nothing written (spec files: tests/cli/cli_specs.rs).
+
+use crate::common::{here, stderr, stdout, wavy};
+use std::f64::consts::PI;
+use std::process::{Command, Output};
+
+/// Rows of `wavy eval` as (a/λ, p̄/E*), checking the header.
+fn eval_rows(o: &Output) -> Vec<(f64, f64)> {
+    assert_eq!(o.status.code(), Some(0), "stderr: {}", stderr(o));
+    let text = stdout(o);
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
+    let (ix, ip) = (
+        header
+            .iter()
+            .position(|h| *h == "a_over_lambda")
+            .expect("a_over_lambda column"),
+        header
+            .iter()
+            .position(|h| *h == "p_over_estar")
+            .expect("p_over_estar column"),
+    );
+    lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            (f[ix].parse().unwrap(), f[ip].parse().unwrap())
+        })
+        .collect()
+}
+
+#[test]
+fn eval_westergaard_matches_r4_to_1e_12() {
+    let o = wavy(
+        &[
+            "eval",
+            "--model",
+            "westergaard",
+            "--ar",
+            "0.18",
+            "--a-over-lambda",
+            "0.1",
+            "0.25",
+            "0.4",
+        ],
+        here(),
+    );
+    let rows = eval_rows(&o);
+    assert_eq!(rows.len(), 3);
+    for (x, p) in rows {
+        let expected = PI * 0.18 * (PI * x).sin().powi(2); // R4
+        assert!(
+            (p - expected).abs() <= 1e-12 * expected,
+            "{p} vs {expected}"
+        );
+    }
+}
+
+#[test]
+fn eval_wnl_matches_r5_to_1e_12_and_inverts() {
+    // R5 bracket-sq at AR = 0.1, τ = 0: A = −0.75459598, B = 1.08526713 (Table 1 by hand).
+    let (a, b) = (-0.75459598_f64, 1.08526713_f64);
+    let o = wavy(
+        &[
+            "eval",
+            "--model",
+            "wnl",
+            "--ar",
+            "0.1",
+            "--tau-max-mpa",
+            "0",
+            "--a-over-lambda",
+            "0.3",
+        ],
+        here(),
+    );
+    let (x, p) = eval_rows(&o)[0];
+    let expected = PI * 0.1 * (PI * x).sin().powi(2) * (b + x * a * (PI * x).cos().powi(2));
+    assert!(
+        (p - expected).abs() <= 1e-12 * expected,
+        "{p} vs {expected}"
+    );
+    // The inverse returns the a/λ that the forward call maps to the printed p̄/E*.
+    let o = wavy(
+        &[
+            "eval",
+            "--model",
+            "wnl",
+            "--ar",
+            "0.1",
+            "--p-over-estar",
+            &p.to_string(),
+        ],
+        here(),
+    );
+    let (x_back, _) = eval_rows(&o)[0];
+    assert!((x_back - 0.3).abs() <= 1e-12 * 0.3, "inverse gave {x_back}");
+}
+
+#[test]
+fn eval_rejects_out_of_range_flags_with_exit_2() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["--ar", "-1", "--a-over-lambda", "0.2"],
+            "--ar = -1 is out of range; allowed: > 0",
+        ),
+        (
+            &[
+                "--ar",
+                "0.1",
+                "--tau-max-mpa",
+                "-0.1",
+                "--a-over-lambda",
+                "0.2",
+            ],
+            "--tau-max-mpa = -0.1 is out of range; allowed: >= 0",
+        ),
+        (
+            &["--ar", "0.1", "--a-over-lambda", "0.6"],
+            "--a-over-lambda = 0.6 is out of range; allowed: [0, 0.5]",
+        ),
+        (
+            &["--ar", "0.1", "--p-over-estar", "-0.01"],
+            "--p-over-estar = -0.01 is out of range; allowed: >= 0",
+        ),
+        (
+            &["--ar", "0.1", "--p-over-estar", "1"],
+            "--p-over-estar = 1 is out of range; allowed: [0, 0.314159",
+        ),
+    ];
+    for (args, message) in cases {
+        let mut all = vec!["eval", "--model", "westergaard"];
+        all.extend_from_slice(args);
+        let o = wavy(&all, here());
+        assert_eq!(o.status.code(), Some(2), "{all:?}");
+        assert!(stderr(&o).contains(message), "{all:?}: {}", stderr(&o));
+        assert!(stdout(&o).is_empty(), "nothing on stdout for bad input");
+    }
+    let o = wavy(
+        &[
+            "eval",
+            "--model",
+            "wnl",
+            "--reading",
+            "literal",
+            "--ar",
+            "0.1",
+            "--p-over-estar",
+            "0.01",
+        ],
+        here(),
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("negative pressure"), "{}", stderr(&o));
+}
+
+/// `wavy solve` with friction: one CSV row per converged step up to the target a/λ, and bad
+/// friction flags rejected with exit 2, naming the flag, the value and the range.
+#[test]
+fn solve_with_friction_prints_the_curve_and_rejects_bad_flags() {
+    let o = wavy(
+        &[
+            "solve",
+            "--ar",
+            "0.1",
+            "--tau-max-mpa",
+            "0.05",
+            "--mu",
+            "0.5",
+            "--mesh",
+            "16",
+            "--until-a-over-lambda",
+            "0.2",
+        ],
+        here(),
+    );
+    let rows = eval_rows(&o);
+    assert!(rows.len() >= 3, "{} rows", rows.len());
+    assert!(rows.last().unwrap().0 >= 0.2);
+    assert!(rows.windows(2).all(|w| w[1].1 > w[0].1));
+    for (flag, value, message) in [
+        ("--mu", "-1", "--mu = -1 is out of range; allowed: >= 0"),
+        (
+            "--tau-max-mpa",
+            "-0.1",
+            "--tau-max-mpa = -0.1 is out of range; allowed: >= 0",
+        ),
+        (
+            "--estar-mpa",
+            "0",
+            "--estar-mpa = 0 is out of range; allowed: > 0",
+        ),
+    ] {
+        let o = wavy(&["solve", "--ar", "0.1", flag, value], here());
+        assert_eq!(o.status.code(), Some(2), "{flag}: {}", stderr(&o));
+        assert!(stderr(&o).contains(message), "{}", stderr(&o));
+        assert!(stdout(&o).is_empty());
+    }
+}
+
+/// `wavy solve --unload`: the loading rows, then the unloading rows back to zero load, each
+/// with its branch in a last column; `--unload` with `--error-estimate` is refused.
+#[test]
+fn solve_with_unload_prints_both_branches() {
+    let o = wavy(
+        &[
+            "solve",
+            "--ar",
+            "0.1",
+            "--tau-max-mpa",
+            "0.05",
+            "--mesh",
+            "16",
+            "--until-a-over-lambda",
+            "0.3",
+            "--unload",
+        ],
+        here(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    let mut lines = text.lines();
+    assert!(lines
+        .next()
+        .unwrap()
+        .ends_with(",active_nodes,contact_fraction,patches,branch"));
+    let rows: Vec<(f64, &str)> = lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            (f[1].parse().unwrap(), f[8])
+        })
+        .collect();
+    let turn = rows.iter().position(|r| r.1 == "unloading").unwrap();
+    assert!(turn >= 3 && rows[..turn].iter().all(|r| r.1 == "loading"));
+    assert!(rows[turn..].iter().all(|r| r.1 == "unloading"));
+    let p_max = rows[turn - 1].0;
+    assert!(rows.last().unwrap().0.abs() <= 1e-10 * p_max);
+    let o = wavy(
+        &["solve", "--ar", "0.1", "--unload", "--error-estimate"],
+        here(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--error-estimate"), "{}", stderr(&o));
+    let o = wavy(
+        &["solve", "--ar", "0.1", "--until-p-over-estar", "0"],
+        here(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--until-p-over-estar"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// A reader that closes the pipe early (`wavy eval … | head -1`) ends every command quietly
+/// with exit 0: no panic, no error message.
+#[test]
+fn closed_stdout_pipe_ends_quietly_with_exit_0() {
+    use std::process::Stdio;
+    let many: Vec<String> = (0..20_000)
+        .map(|i| format!("{}", i as f64 / 40_000.0))
+        .collect();
+    let mut eval = vec!["eval", "--model", "wnl", "--ar", "0.1", "--a-over-lambda"];
+    eval.extend(many.iter().map(String::as_str));
+    let solve = [
+        "solve",
+        "--ar",
+        "0.1",
+        "--mesh",
+        "16",
+        "--until-a-over-lambda",
+        "0.2",
+    ];
+    for args in [&eval[..], &solve[..]] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_wavy"))
+            .args(args)
+            .current_dir(here())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        drop(child.stdout.take()); // the reader goes away before the first line
+        let o = child.wait_with_output().unwrap();
+        assert_eq!(o.status.code(), Some(0), "{}: {}", args[0], stderr(&o));
+        assert!(stderr(&o).is_empty(), "{}: {}", args[0], stderr(&o));
+    }
+}
+
+/// Issue #9 (3, 4): a value that overflows or is negative is an error naming the inputs
+/// (exit 1), never a NaN, ±inf or negative row with exit 0.
+#[test]
+fn eval_refuses_non_finite_and_negative_pressures() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &[
+                "--model",
+                "wnl",
+                "--ar",
+                "1e200",
+                "--a-over-lambda",
+                "0",
+                "0.25",
+            ],
+            "--ar 1e200",
+        ),
+        (
+            &[
+                "--model",
+                "westergaard",
+                "--ar",
+                "1e308",
+                "--a-over-lambda",
+                "0",
+                "0.25",
+            ],
+            "not a finite number",
+        ),
+        (
+            &[
+                "--model",
+                "wnl",
+                "--reading",
+                "literal",
+                "--ar",
+                "0.2",
+                "--tau-max-mpa",
+                "0.1",
+                "--a-over-lambda",
+                "0.02",
+            ],
+            "< 0 at a/λ = 0.02",
+        ),
+        (
+            &[
+                "--model",
+                "wnl",
+                "--ar",
+                "0.6",
+                "--tau-max-mpa",
+                "2",
+                "--a-over-lambda",
+                "0.25",
+            ],
+            "negative mean pressure is unphysical",
+        ),
+        (
+            &[
+                "--model",
+                "wnl",
+                "--ar",
+                "0.1",
+                "--tau-max-mpa",
+                "1e300",
+                "--p-over-estar",
+                "0.1",
+            ],
+            "overflows",
+        ),
+    ];
+    for (args, message) in cases {
+        let mut all = vec!["eval"];
+        all.extend_from_slice(args);
+        let o = wavy(&all, here());
+        assert_eq!(o.status.code(), Some(1), "{all:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(message), "{all:?}: {}", stderr(&o));
+        assert!(!stderr(&o).contains("negative pressure p/E* = NaN"));
+        assert!(stdout(&o).is_empty(), "{all:?}: {}", stdout(&o));
+    }
+}
+
+/// Issue #9 (5, 7): negative numbers with an exponent or in word form reach the range check,
+/// and an unknown coefficient set is refused whatever the model.
+#[test]
+fn hyphenated_numbers_and_unknown_names_are_refused_by_flag() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &[
+                "eval",
+                "--model",
+                "wnl",
+                "--ar",
+                "0.1",
+                "--tau-max-mpa",
+                "-1e-3",
+                "--a-over-lambda",
+                "0.1",
+            ],
+            "--tau-max-mpa = -0.001 is out of range; allowed: >= 0",
+        ),
+        (
+            &[
+                "eval",
+                "--model",
+                "wnl",
+                "--ar",
+                "-inf",
+                "--a-over-lambda",
+                "0.1",
+            ],
+            "--ar = -inf is out of range; allowed: > 0",
+        ),
+        (
+            &[
+                "eval",
+                "--model",
+                "wnl",
+                "--ar",
+                "0.1",
+                "--a-over-lambda",
+                "0.1",
+                "-1e-3",
+            ],
+            "--a-over-lambda = -0.001 is out of range; allowed: [0, 0.5]",
+        ),
+        (
+            &["solve", "--ar", "0.1", "--mu", "-1e-2"],
+            "--mu = -0.01 is out of range; allowed: >= 0",
+        ),
+        (
+            &[
+                "eval",
+                "--model",
+                "westergaard",
+                "--coefficients",
+                "nonsense",
+                "--ar",
+                "0.1",
+                "--a-over-lambda",
+                "0.1",
+            ],
+            "nonsense",
+        ),
+    ];
+    for (args, message) in cases {
+        let o = wavy(args, here());
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(message), "{args:?}: {}", stderr(&o));
+        assert!(stdout(&o).is_empty());
+    }
+}
+
+/// `--profile`: a two-scale curve with its contact fraction and patches; a profile the mesh
+/// cannot resolve, or bad syntax, is invalid input (exit 2) naming the harmonic.
+#[test]
+fn solve_takes_a_profile() {
+    let o = wavy(
+        &[
+            "solve",
+            "--profile",
+            "1:0.1,8:0.1",
+            "--mesh",
+            "64",
+            "--until-contact-fraction",
+            "0.4",
+        ],
+        here(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    let last: Vec<&str> = text.lines().last().unwrap().split(',').collect();
+    assert!(last[6].parse::<f64>().unwrap() >= 0.4, "{last:?}");
+    let o = wavy(
+        &["solve", "--profile", "1:0.1,16:0.1", "--mesh", "32"],
+        here(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("harmonic 16"), "{}", stderr(&o));
+    let o = wavy(&["solve", "--profile", "1:0.1;8:0.1"], here());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("order:aspect_ratio"), "{}", stderr(&o));
+}
