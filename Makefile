@@ -6,7 +6,7 @@
 CARGO ?= cargo
 export CARGO_TERM_COLOR ?= never
 
-.PHONY: all reproduce test test-build python-test lint fmt-check clippy check bless stale bench bench-solver bench-tiers reference fuzz clean
+.PHONY: all reproduce test python-test lint fmt-check clippy check bless stale bench bench-solver bench-tiers reference fuzz clean
 
 all: reproduce
 
@@ -17,18 +17,13 @@ reproduce:
 	$(CARGO) run --release --locked --quiet -- reproduce
 
 ## Every test (release mode: the finite-element tests need it), after formatting and lints; then the
-## Python package's tests. Clippy runs beside the release build of the tests (`-j2`; in its own target
-## folder, since cargo locks one): the build has long stretches on one core (faer, then wavy), which clippy
-## fills. `--tests`: the library's and the binary's unit tests and the integration tests
-## (tests/<concern>/main.rs, one binary per concern); the examples and benches are compiled by clippy,
-## and the crate has no doctests (its code blocks are `text`).
-test: fmt-check
-	$(MAKE) --no-print-directory -j2 clippy test-build
+## Python package's tests. `--tests`: the library's and the binary's unit tests and the integration tests
+## (tests/<concern>/main.rs, one binary per concern); the examples and benches are compiled by clippy in
+## `lint`, and the crate has no doctests (its code blocks are `text`). The tests, the binary and the wheel
+## share one release build (Cargo.toml, "One build"; docs/performance.md).
+test: lint
 	INSTA_UPDATE=no $(CARGO) test --release --locked --tests
 	$(MAKE) --no-print-directory python-test
-
-test-build:
-	$(CARGO) test --release --locked --tests --no-run
 
 ## The Python package (python/, docs/python.md): a virtual environment in target/ with maturin, pytest and
 ## numpy from PyPI, the wheel built (release, reusing target/) and installed, then pytest, which compares the
@@ -45,7 +40,6 @@ python-test:
 ## Formatting of every Rust file (rustfmt on each file too, so that no module escapes `cargo fmt`),
 ## then clippy over every target of the workspace, the Python bindings included.
 RUST_FILES = $(shell git ls-files --cached --others --exclude-standard '*.rs' 2>/dev/null || find src tests benches examples python/src -name '*.rs')
-CLIPPY_TARGET_DIR ?= target/clippy
 lint: fmt-check clippy
 
 fmt-check:
@@ -54,7 +48,7 @@ fmt-check:
 	@rustfmt --check --edition 2021 $(RUST_FILES)
 
 clippy:
-	CARGO_TARGET_DIR=$(CLIPPY_TARGET_DIR) $(CARGO) clippy --release --locked --workspace --all-targets --quiet -- -D warnings
+	$(CARGO) clippy --release --locked --workspace --all-targets --quiet -- -D warnings
 
 ## Recompute every spec and compare with expected/ within each spec's [check] tolerances.
 check:
