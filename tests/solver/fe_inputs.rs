@@ -156,3 +156,52 @@ fn invalid_friction_inputs_name_the_field() {
         }
     }
 }
+
+/// A step callback's `Break` ends the solve as an ordinary return: `SolveError::Stopped` with the
+/// points converged so far, the last one the callback saw included; on loading and on unloading.
+#[test]
+fn a_callback_that_breaks_stops_the_solve_with_its_points() {
+    let pb = LayerProblem {
+        interface: Interface::coulomb_orowan(
+            1.0,
+            0.05,
+            wavy::defaults::elastic_slip_over_element(),
+        ),
+        ..wavy::defaults::layer_problem(0.3)
+    };
+    let opts = SolveOptions {
+        mesh: MeshLevel::along_face(16),
+        until_a_over_lambda: 0.3,
+        ..SolveOptions::default()
+    };
+    let mut seen = 0;
+    let f = solve_curve(&pb, &opts, &mut |_| {
+        seen += 1;
+        if seen == 3 {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    })
+    .expect_err("the callback stops it");
+    assert_eq!(f.error, SolveError::Stopped { points: 3 });
+    assert_eq!(f.points.len(), 3);
+    let full = solve_cycle(&pb, &opts, &mut |_, _| ControlFlow::Continue(())).expect("cycle");
+    let loading = full.points.len();
+    let mut seen = 0;
+    let f = solve_cycle(&pb, &opts, &mut |direction, _| {
+        seen += 1;
+        match direction {
+            LoadDirection::Unloading if seen == loading + 2 => ControlFlow::Break(()),
+            _ => ControlFlow::Continue(()),
+        }
+    })
+    .expect_err("the callback stops the unloading");
+    assert_eq!(
+        f.error,
+        SolveError::Stopped {
+            points: loading + 2
+        }
+    );
+    assert_eq!((f.points.len(), f.unloading.len()), (loading, 2));
+}
