@@ -36,20 +36,10 @@ fn files_of(module: &str) -> Vec<PathBuf> {
     if file.exists() {
         return vec![file];
     }
-    let mut out = vec![];
-    let mut stack = vec![src().join(module)];
-    while let Some(dir) = stack.pop() {
-        for e in std::fs::read_dir(&dir).unwrap().flatten() {
-            let p = e.path();
-            if p.is_dir() {
-                stack.push(p);
-            } else if p.extension().is_some_and(|x| x == "rs") {
-                out.push(p);
-            }
-        }
-    }
-    out.sort();
-    out
+    crate::rust_files_under(&Path::new("src").join(module))
+        .into_iter()
+        .map(|f| Path::new(env!("CARGO_MANIFEST_DIR")).join(f))
+        .collect()
 }
 
 /// Top-level modules named by `crate::<m>` in code (comments stripped).

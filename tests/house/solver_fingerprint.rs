@@ -14,23 +14,6 @@ fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// Every `.rs` file under `dir`, relative to the crate root.
-fn files_under(dir: &Path) -> Vec<PathBuf> {
-    let mut out = vec![];
-    let mut stack = vec![root().join(dir)];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).expect("a readable folder").flatten() {
-            let p = e.path();
-            if p.is_dir() {
-                stack.push(p);
-            } else if p.extension().is_some_and(|x| x == "rs") {
-                out.push(p.strip_prefix(root()).unwrap().to_path_buf());
-            }
-        }
-    }
-    out
-}
-
 /// The file that the path `segments` (after `crate::`) names: the longest prefix that is a
 /// module file.
 fn file_of(segments: &[&str]) -> Option<PathBuf> {
@@ -63,7 +46,7 @@ fn files_named(text: &str) -> BTreeSet<PathBuf> {
 /// Every file the solver's files reach, transitively, `src/fe/` included.
 fn solver_reach() -> BTreeSet<PathBuf> {
     let mut reached: BTreeSet<PathBuf> = BTreeSet::new();
-    let mut pending = files_under(Path::new("src/fe"));
+    let mut pending = crate::rust_files_under(Path::new("src/fe"));
     while let Some(file) = pending.pop() {
         if !reached.insert(file.clone()) {
             continue;

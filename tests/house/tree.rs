@@ -14,24 +14,10 @@ fn root() -> &'static Path {
 
 /// Every `.rs` file under `src/`, relative to `src/`, sorted.
 fn source_files() -> Vec<PathBuf> {
-    let src = root().join("src");
-    let mut out = vec![];
-    let mut stack = vec![src.clone()];
-    while let Some(dir) = stack.pop() {
-        for e in std::fs::read_dir(&dir)
-            .expect("a readable folder")
-            .flatten()
-        {
-            let p = e.path();
-            if p.is_dir() {
-                stack.push(p);
-            } else if p.extension().is_some_and(|x| x == "rs") {
-                out.push(p.strip_prefix(&src).unwrap().to_path_buf());
-            }
-        }
-    }
-    out.sort();
-    out
+    crate::rust_files_under(Path::new("src"))
+        .into_iter()
+        .map(|f| f.strip_prefix("src").unwrap().to_path_buf())
+        .collect()
 }
 
 /// The source files a text does not name in backticks: `` `a/b.rs` ``, or for `a/mod.rs` also

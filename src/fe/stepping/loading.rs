@@ -192,17 +192,18 @@ pub(crate) fn loading_branch(
         };
         let event = find_event(model, asm, opts, &path, k, tangent, node_events, step)
             .and_then(|found| settle_event(model, asm, opts, &path, found, node_events, step));
-        let settled = match event {
+        let mut settled = match event {
             Ok(settled) => settled,
             Err(error) => return Err(path.fail(error)),
         };
-        let Settled {
+        let measured = measure_event(model, asm, opts, estar, &mut settled);
+        let SettledEvent {
             state: st,
-            measured,
             extrapolated,
             released,
             node: k,
-        } = measure_event(model, asm, opts, estar, settled);
+            ..
+        } = settled;
         let overshot = opts
             .until_p_over_estar
             .filter(|&t| measured.point.p_over_estar > t);
@@ -446,41 +447,19 @@ fn settle_event(
     })
 }
 
-/// A settled event with its slip committed and its point measured.
-struct Settled {
-    state: State,
-    measured: Measured,
-    extrapolated: Option<f64>,
-    released: Option<usize>,
-    node: usize,
-}
-
-/// Commits the slip of a settled event and measures its point.
+/// Commits the slip of a settled event and measures its point (its Newton iterations those of
+/// the event).
 fn measure_event(
     model: &Model,
     asm: &mut Assembly,
     opts: &SolveOptions,
     estar: f64,
-    event: SettledEvent,
-) -> Settled {
-    let SettledEvent {
-        state: mut st,
-        edge,
-        released,
-        extrapolated,
-        node,
-        iterations,
-    } = event;
-    model.commit_slip(&mut st);
-    let mut measured = measure(model, asm, &st, estar, edge, opts);
-    measured.point.newton_iterations = iterations;
-    Settled {
-        state: st,
-        measured,
-        extrapolated,
-        released,
-        node,
-    }
+    event: &mut SettledEvent,
+) -> Measured {
+    model.commit_slip(&mut event.state);
+    let mut measured = measure(model, asm, &event.state, estar, event.edge, opts);
+    measured.point.newton_iterations = event.iterations;
+    measured
 }
 
 /// The event that overshoots the pressure target replaced by the state on it, between the last
