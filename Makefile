@@ -25,15 +25,17 @@ test: lint
 	INSTA_UPDATE=no $(CARGO) test --release --locked --tests
 	$(MAKE) --no-print-directory python-test
 
-## The Python package (python/, docs/python.md): a virtual environment in target/ with maturin, pytest and
-## numpy from PyPI, the wheel built (release, reusing target/) and installed, then pytest, which compares the
-## package with the binary built here. Exit 5 (no tests collected) fails like any other.
+## The Python package (python/, docs/python.md): a virtual environment in target/ with maturin, pytest,
+## numpy, numpydoc (the docstring checks) and dask[distributed] (the sweep on a LocalCluster) from PyPI,
+## the wheel built (release, reusing target/) and installed, then pytest, which compares the package
+## with the binary built here. Exit 5 (no tests collected) fails like any other.
 PYTHON ?= python3
 VENV ?= target/python-venv
 python-test:
 	$(CARGO) build --release --locked
 	test -x $(VENV)/bin/python || $(PYTHON) -m venv $(VENV)
-	$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check "maturin>=1.16,<1.17" pytest numpy
+	$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check "maturin>=1.16,<1.17" pytest numpy \
+		"numpydoc>=1.8,<2" "dask[distributed]>=2024.8,<2027"
 	PATH="$(CURDIR)/$(VENV)/bin:$$PATH" $(VENV)/bin/python -m pip install --quiet --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python
 	cd python/tests && ../../$(VENV)/bin/python -m pytest -q -p no:cacheprovider
 

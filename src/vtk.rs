@@ -95,13 +95,36 @@ pub fn series_times(steps: &[VtkStep]) -> Vec<f64> {
 /// unloading, with the slab displacement `d/λ` as time (on unloading the slab travel
 /// `2 d_max/λ − d/λ`, [`series_times`]). Point data: `displacement_over_lambda` (current −
 /// reference position, 3 components, z = 0), `reference_position_over_lambda` (3 components),
-/// and on the contact face (0 elsewhere) `in_contact` (0/1), `contact_pressure_over_estar` and
+/// and on the contact face (0 elsewhere) `in_contact` (0/1), `in_stick` (0/1: 1 where the face
+/// sticks to the indenter, [`crate::fe::DeformedState::in_stick`]; a node in contact and not
+/// sticking slips), `contact_pressure_over_estar` and
 /// `contact_shear_over_estar` (nodal force over tributary length of the deformed face, over
 /// E*; shear along the indenter's tangent, 0 on the symmetry lines), `slip_over_lambda` (slip
 /// since touching, [`StepState::face_slip_over_lambda`]); cell data `J` (current over reference
 /// area of each quad, the mean dilatation of the Q1/P0 element). Files of an earlier series in
 /// `dir` that this one does not overwrite stay, unlisted.
 pub fn write_series(dir: &Path, steps: &[VtkStep]) -> Result<Vec<PathBuf>, VtkError> {
+    write_series_as(dir, steps, None)
+}
+
+/// [`write_series`] for a solve that stopped short: its converged states, and a collection
+/// that says so. The `Collection` element carries `status="incomplete"` and the reason
+/// (`reason="…"`, the solver's message), and an XML comment repeats both for a reader of the
+/// file; ParaView ignores both and opens the converged states.
+pub fn write_incomplete_series(
+    dir: &Path,
+    steps: &[VtkStep],
+    reason: &str,
+) -> Result<Vec<PathBuf>, VtkError> {
+    write_series_as(dir, steps, Some(reason))
+}
+
+/// The series, complete (`incomplete` = `None`) or not.
+fn write_series_as(
+    dir: &Path,
+    steps: &[VtkStep],
+    incomplete: Option<&str>,
+) -> Result<Vec<PathBuf>, VtkError> {
     std::fs::create_dir_all(dir).map_err(|source| VtkError::Folder {
         dir: dir.to_path_buf(),
         source,
@@ -111,7 +134,7 @@ pub fn write_series(dir: &Path, steps: &[VtkStep]) -> Result<Vec<PathBuf>, VtkEr
         reason: format!("{e:#}"),
     })?;
     let mut written = Vec::with_capacity(steps.len() + 1);
-    let result = write_files(dir, steps, &mut written);
+    let result = write_files(dir, steps, incomplete, &mut written);
     if result.is_err() {
         for path in &written {
             let _ = std::fs::remove_file(path);
@@ -123,7 +146,12 @@ pub fn write_series(dir: &Path, steps: &[VtkStep]) -> Result<Vec<PathBuf>, VtkEr
 }
 
 /// The `.vtu` of every step, then the collection; each path is pushed once written.
-fn write_files(dir: &Path, steps: &[VtkStep], written: &mut Vec<PathBuf>) -> Result<(), VtkError> {
+fn write_files(
+    dir: &Path,
+    steps: &[VtkStep],
+    incomplete: Option<&str>,
+    written: &mut Vec<PathBuf>,
+) -> Result<(), VtkError> {
     let mut names = Vec::with_capacity(steps.len());
     for (index, step) in steps.iter().enumerate() {
         let name = step_file_name(index);
@@ -137,7 +165,7 @@ fn write_files(dir: &Path, steps: &[VtkStep], written: &mut Vec<PathBuf>) -> Res
         names.push(name);
     }
     let path = dir.join(COLLECTION_FILE);
-    let bytes = collection(steps, &names).map_err(|e| VtkError::Encode {
+    let bytes = collection(steps, &names, incomplete).map_err(|e| VtkError::Encode {
         path: path.clone(),
         reason: e.to_string(),
     })?;
@@ -186,6 +214,10 @@ fn unstructured_grid(st: &StepState) -> Result<Vec<u8>, vtkio::Error> {
     for (&n, &c) in d.bottom.iter().zip(&d.in_contact) {
         in_contact[n] = u8::from(c);
     }
+    let mut in_stick = vec![0u8; num_points];
+    for (&n, &s) in d.bottom.iter().zip(&d.in_stick) {
+        in_stick[n] = u8::from(s);
+    }
     let connectivity: Vec<u64> = d.quads.iter().flatten().map(|&n| n as u64).collect();
     let offsets: Vec<u64> = (1..=d.quads.len() as u64).map(|c| 4 * c).collect();
     let piece = UnstructuredGridPiece {
@@ -202,6 +234,7 @@ fn unstructured_grid(st: &StepState) -> Result<Vec<u8>, vtkio::Error> {
                 Attribute::vectors("displacement_over_lambda").with_data(displacement),
                 Attribute::vectors("reference_position_over_lambda").with_data(reference),
                 Attribute::scalars("in_contact", 1).with_data(in_contact),
+                Attribute::scalars("in_stick", 1).with_data(in_stick),
                 Attribute::scalars("contact_pressure_over_estar", 1)
                     .with_data(on_face(&d.contact_pressure_over_estar)),
                 Attribute::scalars("contact_shear_over_estar", 1)
@@ -225,8 +258,13 @@ fn unstructured_grid(st: &StepState) -> Result<Vec<u8>, vtkio::Error> {
 }
 
 /// The `.pvd` bytes: one `DataSet` per step, its time ([`series_times`]), its branch as the
-/// group, and its file relative to the collection.
-fn collection(steps: &[VtkStep], names: &[String]) -> Result<Vec<u8>, quick_xml::Error> {
+/// group, and its file relative to the collection; for an incomplete series the status and
+/// reason ([`write_incomplete_series`]).
+fn collection(
+    steps: &[VtkStep],
+    names: &[String],
+    incomplete: Option<&str>,
+) -> Result<Vec<u8>, quick_xml::Error> {
     let mut w = quick_xml::Writer::new_with_indent(Vec::new(), b' ', 2);
     w.write_event(Event::Decl(BytesDecl::new("1.0", None, None)))?;
     let file = BytesStart::new("VTKFile").with_attributes([
@@ -235,7 +273,20 @@ fn collection(steps: &[VtkStep], names: &[String]) -> Result<Vec<u8>, quick_xml:
         ("byte_order", "LittleEndian"),
     ]);
     w.write_event(Event::Start(file))?;
-    w.write_event(Event::Start(BytesStart::new("Collection")))?;
+    let mut collection = BytesStart::new("Collection");
+    if let Some(reason) = incomplete {
+        let note = format!(
+            " INCOMPLETE: the solve stopped short after {} converged points: {} ",
+            steps.len(),
+            reason.replace("--", "- -")
+        );
+        w.write_event(Event::Comment(quick_xml::events::BytesText::from_escaped(
+            note,
+        )))?;
+        collection.push_attribute(("status", "incomplete"));
+        collection.push_attribute(("reason", reason));
+    }
+    w.write_event(Event::Start(collection))?;
     for ((step, name), time) in steps.iter().zip(names).zip(series_times(steps)) {
         let time = time.to_string();
         let data_set = BytesStart::new("DataSet").with_attributes([

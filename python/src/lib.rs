@@ -5,32 +5,62 @@
 //! wraps these functions; docs/python.md describes it.
 
 use numpy::{PyArray1, PyReadonlyArray1};
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyMemoryError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::ops::ControlFlow;
 use std::path::PathBuf;
 use std::str::FromStr;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{mpsc, Arc};
+use std::time::Duration;
 use wavy::fe::{Kinematics, LoadDirection};
-use wavy::models::{CoefficientSet, ModelKind, Reading};
+use wavy::models::{CoefficientSet, FitDomain, ModelKind, Reading};
 use wavy::runner::requests::eval_request::LawRequest;
 use wavy::runner::requests::input_checks::{self, out_of_range, InputError};
 use wavy::runner::requests::request_error::{full_message, RequestError};
-use wavy::runner::requests::solve_outcome::{Column, SolveOutcome};
+use wavy::runner::requests::solve_outcome::{Column, ExtraColumn, SolveOutcome};
 use wavy::runner::requests::solve_request::{self, SolveRequest};
+use wavy::runner::requests::tolerance_choice;
+
+/// A message of the library in Python's words: every command-line flag `--some-name` becomes
+/// the keyword argument `some_name` (the bindings' arguments are the flags' names in
+/// snake_case, docs/python.md), so that a message names what the Python caller wrote.
+fn in_python_words(message: &str) -> String {
+    let mut out = String::with_capacity(message.len());
+    let mut rest = message;
+    while let Some(i) = rest.find("--") {
+        out.push_str(&rest[..i]);
+        let after = &rest[i + 2..];
+        let len = after
+            .find(|c: char| !(c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-'))
+            .unwrap_or(after.len());
+        let name = &after[..len];
+        if name.starts_with(|c: char| c.is_ascii_lowercase()) {
+            out.push_str(&name.replace('-', "_"));
+        } else {
+            out.push_str("--");
+            out.push_str(name);
+        }
+        rest = &after[len..];
+    }
+    out.push_str(rest);
+    out
+}
 
 /// An input error as `ValueError`, any other failure as `RuntimeError`, with the command
-/// line's message (what `wavy` prints after `error: `).
+/// line's message (what `wavy` prints after `error: `) in Python's words.
 fn to_py_err(e: RequestError) -> PyErr {
-    let message = full_message(&e);
-    match e.is_input() {
-        true => PyValueError::new_err(message),
-        false => PyRuntimeError::new_err(message),
+    let message = in_python_words(&full_message(&e));
+    match (&e, e.is_input()) {
+        (RequestError::Memory(_), _) => PyMemoryError::new_err(message),
+        (_, true) => PyValueError::new_err(message),
+        (_, false) => PyRuntimeError::new_err(message),
     }
 }
 
 fn input_err(e: InputError) -> PyErr {
-    PyValueError::new_err(e.to_string())
+    PyValueError::new_err(in_python_words(&e.to_string()))
 }
 
 /// A name among a type's names, or a `ValueError` naming the argument and the allowed names.
@@ -97,6 +127,24 @@ fn law<'py>(
     ))
 }
 
+/// The fit domain of a coefficient set, `(AR min, AR max, τ_max min, τ_max max in MPa)`: outside
+/// it a WNL value is extrapolated (the `extrapolated` flag of [`law`]).
+#[pyfunction]
+fn fit_domain(coefficients: &str) -> PyResult<(f64, f64, f64, f64)> {
+    let set: CoefficientSet = parse_name(
+        "--coefficients",
+        coefficients,
+        &CoefficientSet::ALL.map(CoefficientSet::name),
+    )?;
+    let d = set.coefficients().domain;
+    Ok((
+        d.aspect_ratio_min,
+        d.aspect_ratio_max,
+        d.tau_max_mpa_min,
+        d.tau_max_mpa_max,
+    ))
+}
+
 /// The columns and metadata of an outcome, as a dict (`wavy.Result` wraps it).
 fn outcome_dict<'py>(py: Python<'py>, o: &SolveOutcome) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
@@ -119,28 +167,65 @@ fn outcome_dict<'py>(py: Python<'py>, o: &SolveOutcome) -> PyResult<Bound<'py, P
     Ok(d)
 }
 
-/// The Python signal handlers run (Ctrl-C raises `KeyboardInterrupt` there); `Break` with the
-/// exception kept in `raised` when one raised. Called between load steps, with the GIL
-/// taken for the check only.
-fn check_signals(raised: &mut Option<PyErr>) -> ControlFlow<()> {
-    match Python::attach(|py| py.check_signals()) {
-        Ok(()) => ControlFlow::Continue(()),
-        Err(e) => {
-            *raised = Some(e);
-            ControlFlow::Break(())
+/// How often the waiting Python thread runs the signal handlers during a solve.
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+/// `request` solved on a thread of its own while this one, the GIL released, waits for it and
+/// runs Python's signal handlers every [`SIGNAL_POLL`]. A signal handler that raises (Ctrl-C:
+/// `KeyboardInterrupt`) sets the solve's interrupt flag ([`wavy::fe::interrupt`]), which the
+/// solver reads at every Newton iteration, and raises at once: the caller gets the exception
+/// within one poll, whatever the mesh, and the solve thread ends at its next iteration.
+fn solve_on_thread(
+    py: Python<'_>,
+    request: SolveRequest,
+    vtk: Option<PathBuf>,
+) -> PyResult<Result<wavy::runner::requests::solve_outcome::SolveOutcome, RequestError>> {
+    let flag = Arc::new(AtomicBool::new(false));
+    let (sender, receiver) = mpsc::channel();
+    let watched = Arc::clone(&flag);
+    std::thread::Builder::new()
+        .name("wavy-solve".into())
+        .spawn(move || {
+            let solved = wavy::fe::interrupt::watching(watched, || {
+                solve_request::solve(&request, vtk.as_deref(), &mut |_| ControlFlow::Continue(()))
+            });
+            // the receiver is gone when the caller was interrupted: nobody waits for this
+            let _ = sender.send(solved);
+        })
+        .map_err(|e| PyRuntimeError::new_err(format!("cannot start the solve's thread: {e}")))?;
+    let mut receiver = receiver;
+    loop {
+        // the receiver is moved into the GIL-free wait and back (it is `Send`, not `Sync`)
+        let (received, back) = py.detach(move || (receiver.recv_timeout(SIGNAL_POLL), receiver));
+        receiver = back;
+        match received {
+            Ok(solved) => return Ok(solved),
+            Err(mpsc::RecvTimeoutError::Timeout) => {
+                if let Err(raised) = py.check_signals() {
+                    flag.store(true, Ordering::Relaxed);
+                    return Err(raised);
+                }
+            }
+            Err(mpsc::RecvTimeoutError::Disconnected) => {
+                return Err(PyRuntimeError::new_err(
+                    "the solve's thread ended without an answer (a bug in wavy: please report it)",
+                ))
+            }
         }
     }
 }
 
 /// `wavy solve` with the same options, the GIL released during the solve. Returns the outcome
 /// as a dict, with `stopped` = None, or, when the solver stopped, the converged part and
-/// `stopped` = (message, reason); raises `ValueError` for bad input, `KeyboardInterrupt` on
-/// Ctrl-C (checked after every converged load step). With `vtk`, a complete curve also writes
-/// its ParaView time series into that folder (as `wavy solve --vtk`).
+/// `stopped` = (message, reason), and `notes` (what the command line tells on stderr) and
+/// `extrapolated` (outside the WNL fit domain); raises `ValueError` for bad input, `MemoryError`
+/// when the solve's estimated memory is above `max_memory` or what is available,
+/// `KeyboardInterrupt` on Ctrl-C ([`solve_on_thread`]). With `vtk`, the curve's ParaView time
+/// series is written into that folder, as `wavy solve --vtk` does.
 #[pyfunction]
 #[pyo3(signature = (*, ar, tau_max_mpa, mu, estar_mpa, kappa_over_g, thickness_over_lambda,
     kinematics, mesh, tolerance, error_estimate, until_a_over_lambda, until_p_over_estar, unload,
-    vtk, profile, until_contact_fraction))]
+    vtk, profile, until_contact_fraction, max_memory))]
 #[allow(clippy::too_many_arguments)]
 fn solve<'py>(
     py: Python<'py>,
@@ -160,6 +245,7 @@ fn solve<'py>(
     vtk: Option<PathBuf>,
     profile: Option<&str>,
     until_contact_fraction: Option<f64>,
+    max_memory: Option<u64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     // `profile` (the command line's --profile) instead of `ar` (its shorthand --ar)
     let (ar, finer_harmonics) = match profile {
@@ -190,33 +276,48 @@ fn solve<'py>(
         until_p_over_estar,
         until_contact_fraction,
         unload,
+        max_memory,
         finer_harmonics,
         ..SolveRequest::new(ar)
     };
-    let mut raised: Option<PyErr> = None;
-    let solved = py.detach(|| {
-        solve_request::solve(&request, vtk.as_deref(), &mut |_| {
-            check_signals(&mut raised)
-        })
-    });
-    match solved {
+    // the notes the command line gives on stderr, for the result's metadata
+    let prepared = request.prepare().map_err(to_py_err)?;
+    let mut notes: Vec<String> = vec![];
+    if let (Some(choice), Some(t)) = (&prepared.tolerance_choice, tolerance) {
+        notes.push(tolerance_choice::announcement(choice, t));
+    }
+    notes.extend(prepared.notes.iter().cloned());
+    let notes: Vec<String> = notes.iter().map(|n| in_python_words(n)).collect();
+    let extrapolated = !FitDomain::PAPER.contains(request.ar, request.tau_max_mpa);
+    let with_metadata = |d: Bound<'py, PyDict>| -> PyResult<Bound<'py, PyDict>> {
+        d.set_item("notes", notes.clone())?;
+        d.set_item("extrapolated", extrapolated)?;
+        Ok(d)
+    };
+    match solve_on_thread(py, request, vtk)? {
         Ok(outcome) => {
-            let d = outcome_dict(py, &outcome)?;
+            let d = with_metadata(outcome_dict(py, &outcome)?)?;
             d.set_item("stopped", py.None())?;
             Ok(d)
         }
         Err(RequestError::Stopped { error, partial }) => {
-            let d = outcome_dict(py, &partial)?;
+            let d = with_metadata(outcome_dict(py, &partial)?)?;
             let message = full_message(&RequestError::Stopped {
                 error: error.clone(),
                 partial: partial.clone(),
             });
-            d.set_item("stopped", (message, error.to_string()))?;
+            d.set_item(
+                "stopped",
+                (
+                    in_python_words(&message),
+                    in_python_words(&error.to_string()),
+                ),
+            )?;
             Ok(d)
         }
-        Err(RequestError::Interrupted { .. }) => {
-            Err(raised.unwrap_or_else(|| PyRuntimeError::new_err("the solve was interrupted")))
-        }
+        Err(RequestError::Interrupted { .. }) => Err(
+            pyo3::exceptions::PyKeyboardInterrupt::new_err("the solve was interrupted"),
+        ),
         Err(other) => Err(to_py_err(other)),
     }
 }
@@ -251,9 +352,9 @@ fn run(
             if e.chain()
                 .any(|c| c.is::<wavy::spec::SpecError>() || c.is::<InputError>()) =>
         {
-            Err(PyValueError::new_err(format!("{e:#}")))
+            Err(PyValueError::new_err(in_python_words(&format!("{e:#}"))))
         }
-        Err(e) => Err(PyRuntimeError::new_err(format!("{e:#}"))),
+        Err(e) => Err(PyRuntimeError::new_err(in_python_words(&format!("{e:#}")))),
     }
 }
 
@@ -268,9 +369,22 @@ fn branch_names() -> [&'static str; 2] {
 #[pymodule]
 fn _wavy(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(law, m)?)?;
+    m.add_function(wrap_pyfunction!(fit_domain, m)?)?;
     m.add_function(wrap_pyfunction!(solve, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add("BRANCHES", branch_names())?;
+    // the columns of a result, in the order `wavy solve` prints them (the one list of them:
+    // `SolveOutcome::columns`), without the optional `error_estimate`
+    let empty = SolveOutcome {
+        mesh: wavy::fe::MeshLevel::Default,
+        unknowns: 0,
+        extra: ExtraColumn::None,
+        rows: vec![],
+        work: wavy::fe::SolveWork::default(),
+    };
+    let columns: Vec<&str> = empty.columns().iter().map(|(name, _)| *name).collect();
+    m.add("COLUMNS", columns)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     let defaults = SolveRequest::new(f64::NAN);
     let d = PyDict::new(m.py());
     d.set_item("mu", defaults.mu)?;

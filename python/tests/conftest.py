@@ -3,6 +3,7 @@
 import csv
 import io
 import os
+import re
 import subprocess
 from pathlib import Path
 
@@ -34,3 +35,9 @@ def cli_error(*args):
     assert rc != 0, args
     assert err.startswith("error: "), err
     return err[len("error: "):].rstrip("\n"), rc
+
+
+def python_words(message):
+    """A command-line message as Python says it: each flag `--some-name` is the argument
+    `some_name` (docs/python.md, Errors)."""
+    return re.sub(r"--([a-z][a-z0-9-]*)", lambda m: m.group(1).replace("-", "_"), message)

@@ -48,7 +48,8 @@ pub struct SolveArgs {
     #[arg(long, default_value = "finite", value_parser = one_of::<Kinematics>(Kinematics::ALL.map(Kinematics::name)))]
     pub kinematics: Kinematics,
     /// Mesh: coarse (32×16 elements), default (48×24), fine (72×36), or N elements along the
-    /// contact face (4 to 2048; N/2 across the thickness).
+    /// contact face (4 to 2048; N/2 across the thickness). A --profile given no mesh gets the
+    /// coarsest mesh, at least the default, that resolves its finest harmonic (told on stderr).
     /// [default: default]
     #[arg(long, value_parser = super::input::mesh, conflicts_with = "tolerance")]
     pub mesh: Option<MeshLevel>,
@@ -85,12 +86,18 @@ pub struct SolveArgs {
     #[arg(long, conflicts_with = "error_estimate")]
     pub unload: bool,
     /// Also write the deformed state of every converged point into this folder for ParaView:
-    /// one step_NNNN.vtu per point (displacement, reference position, contact status,
-    /// pressure, shear and slip on the face, J per element) and series.pvd, the time series
-    /// (time: the slab displacement d/λ; on unloading, the slab travel 2 d_max − d). Written
-    /// only when the curve is complete.
+    /// one step_NNNN.vtu per point (displacement, reference position, contact and stick
+    /// status, pressure, shear and slip on the face, J per element) and series.pvd, the time series
+    /// (time: the slab displacement d/λ; on unloading, the slab travel 2 d_max − d). A curve
+    /// that stops short writes its converged points, and series.pvd says it is incomplete and
+    /// why (status="incomplete", reason="…"); the command still exits 1.
     #[arg(long, value_name = "DIR")]
     pub vtk: Option<std::path::PathBuf>,
+    /// Refuse the solve (exit 1, naming the estimate) when its estimated peak memory is above
+    /// this many bytes; it is also refused above the memory the machine has available (the
+    /// estimate: docs/performance.md, "Large meshes").
+    #[arg(long, value_name = "BYTES")]
+    pub max_memory: Option<u64>,
 }
 
 impl SolveArgs {
@@ -115,6 +122,7 @@ impl SolveArgs {
             until_p_over_estar: self.until_p_over_estar,
             until_contact_fraction: self.until_contact_fraction,
             unload: self.unload,
+            max_memory: self.max_memory,
         }
     }
 
@@ -128,9 +136,15 @@ impl SolveArgs {
 /// after the converged rows, when the solver cannot go on. The solve is the library's
 /// (`wavy::runner::requests::solve_request`); this layer prints.
 pub fn solve(args: &SolveArgs, out: &mut impl Write) -> Result<ExitCode> {
+    if let Some(dir) = &args.vtk {
+        wavy::runner::requests::input_checks::vtk_folder(dir)?;
+    }
     let prepared = args.setup()?;
     if let (Some(choice), Some(t)) = (&prepared.tolerance_choice, args.tolerance) {
         super::tolerance::announce(choice, t);
+    }
+    for note in &prepared.notes {
+        eprintln!("{note}");
     }
     let bar = std::io::stderr().is_terminal().then(|| {
         let b = indicatif::ProgressBar::new_spinner();

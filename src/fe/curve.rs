@@ -28,17 +28,25 @@ pub struct CurvePoint {
     /// Contact patches in the half wavelength `[0, ½]` (a patch that reaches a symmetry line
     /// continues in its mirror image).
     pub patches: usize,
+    /// Total stick length over λ ([`crate::fe::contact::stick_zone`]): the part of the contact
+    /// fraction where the face sticks to the indenter (0 without friction).
+    #[serde(default)]
+    pub stick_fraction: f64,
+    /// Half-width over λ of the stick zone at the peak: the `x` of its stick–slip front (0
+    /// when the peak slips, and without friction).
+    #[serde(default)]
+    pub stick_half_width_over_lambda: f64,
 }
 
 impl CurvePoint {
     /// Header of the CSV form of curve points ([`CurvePoint::csv_row`]).
-    pub const CSV_HEADER: &'static str = "a_over_lambda,p_over_estar,p_over_estar_reaction,slab_displacement_over_lambda,newton_iterations,active_nodes,contact_fraction,patches";
+    pub const CSV_HEADER: &'static str = "a_over_lambda,p_over_estar,p_over_estar_reaction,slab_displacement_over_lambda,newton_iterations,active_nodes,contact_fraction,patches,stick_fraction,stick_half_width_over_lambda";
 
     /// One CSV row, numbers in shortest round-trip form (exact: [`FromStr`] reads it back
     /// bit for bit).
     pub fn csv_row(&self) -> String {
         format!(
-            "{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{}",
             self.a_over_lambda,
             self.p_over_estar,
             self.p_over_estar_reaction,
@@ -46,7 +54,9 @@ impl CurvePoint {
             self.newton_iterations,
             self.active_nodes,
             self.contact_fraction,
-            self.patches
+            self.patches,
+            self.stick_fraction,
+            self.stick_half_width_over_lambda
         )
     }
 }
@@ -59,7 +69,7 @@ pub struct CurvePointParseError {
     pub row: String,
 }
 
-const CSV_FIELDS: usize = 8;
+const CSV_FIELDS: usize = 10;
 
 impl FromStr for CurvePoint {
     type Err = CurvePointParseError;
@@ -79,6 +89,8 @@ impl FromStr for CurvePoint {
             active_nodes: f[5].parse().map_err(|_| bad())?,
             contact_fraction: f[6].parse().map_err(|_| bad())?,
             patches: f[7].parse().map_err(|_| bad())?,
+            stick_fraction: f[8].parse().map_err(|_| bad())?,
+            stick_half_width_over_lambda: f[9].parse().map_err(|_| bad())?,
         })
     }
 }
@@ -101,6 +113,10 @@ pub struct DeformedState {
     /// Whether each contact-face node is in contact (the active set; the edge node of the
     /// last event touches with zero force, so its pressure is round-off of either sign).
     pub in_contact: Vec<bool>,
+    /// Whether each contact-face node sticks to the indenter ([`crate::fe::contact::stick_zone`];
+    /// all `false` without friction): an active node not marked sticks slips.
+    #[serde(default)]
+    pub in_stick: Vec<bool>,
     /// Normal contact pressure `p/E*` per contact-face node: the normal contact force
     /// over the node's tributary length on the deformed face (0 on free nodes).
     pub contact_pressure_over_estar: Vec<f64>,
@@ -216,6 +232,8 @@ pub(crate) fn awkward_point() -> CurvePoint {
         active_nodes: 17,
         contact_fraction: 0.6 - 0.0000001,
         patches: 3,
+        stick_fraction: 0.1 + 0.7,
+        stick_half_width_over_lambda: 0.3 - 1e-16,
     }
 }
 
@@ -247,6 +265,6 @@ mod tests {
         assert_eq!(p.csv_row().parse::<CurvePoint>(), Ok(p));
         assert_eq!(CurvePoint::CSV_HEADER.split(',').count(), CSV_FIELDS);
         assert!("1,2,3".parse::<CurvePoint>().is_err());
-        assert!("1,2,3,4,x,6,7,8".parse::<CurvePoint>().is_err());
+        assert!("1,2,3,4,x,6,7,8,9,10".parse::<CurvePoint>().is_err());
     }
 }

@@ -139,7 +139,7 @@ pub enum SolveError {
     },
     /// The contact half-width reached its limit before the mean pressure reached its
     /// target ([`super::SolveOptions::until_p_over_estar`]).
-    #[error("the contact half-width reached its limit a/λ = {a_over_lambda:.4} at p̄/E* = {p_over_estar:.4}, short of the target p̄/E* = {target:.4}; raise until_a_over_lambda or lower the target")]
+    #[error("the contact half-width reached its limit a/λ = {a_over_lambda:.4} at p̄/E* = {p_over_estar:.4}, short of the target p̄/E* = {target:.4}; {}", pressure_limit_advice(*a_over_lambda))]
     PressureTargetBeyondLimit {
         /// Contact half-width reached.
         a_over_lambda: f64,
@@ -191,6 +191,17 @@ pub(crate) enum StepFail {
         iteration: usize,
         message: String,
     },
+}
+
+/// The advice of [`SolveError::PressureTargetBeyondLimit`]: one the caller can follow. At
+/// a/λ ≈ ½ (a profile's outermost patch edge reaches the symmetry line before full contact) no
+/// larger `until_a_over_lambda` is allowed.
+fn pressure_limit_advice(a_over_lambda: f64) -> &'static str {
+    if a_over_lambda >= 0.4995 {
+        "the contact reached the symmetry line (a profile's outermost patch edge does before full contact), so no larger until_a_over_lambda exists: lower the target, or load to a contact fraction (until_contact_fraction) instead"
+    } else {
+        "raise until_a_over_lambda (below 0.5) or lower the target"
+    }
 }
 
 impl StepFail {

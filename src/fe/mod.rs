@@ -48,6 +48,7 @@ pub mod contact;
 pub mod convergence;
 pub mod curve;
 pub mod error;
+pub mod interrupt;
 pub mod linsys;
 pub mod model;
 pub mod newton;

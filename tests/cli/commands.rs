@@ -220,14 +220,13 @@ fn solve_with_unload_prints_both_branches() {
     assert!(o.status.success(), "{}", stderr(&o));
     let text = stdout(&o);
     let mut lines = text.lines();
-    assert!(lines
-        .next()
-        .unwrap()
-        .ends_with(",active_nodes,contact_fraction,patches,branch"));
+    assert!(lines.next().unwrap().ends_with(
+        ",active_nodes,contact_fraction,patches,stick_fraction,stick_half_width_over_lambda,branch"
+    ));
     let rows: Vec<(f64, &str)> = lines
         .map(|l| {
             let f: Vec<&str> = l.split(',').collect();
-            (f[1].parse().unwrap(), f[8])
+            (f[1].parse().unwrap(), *f.last().unwrap())
         })
         .collect();
     let turn = rows.iter().position(|r| r.1 == "unloading").unwrap();

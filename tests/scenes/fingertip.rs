@@ -120,6 +120,8 @@ fn fig5_fe_band_comes_from_the_fe_curves() {
                 active_nodes: 0,
                 contact_fraction: 2.0 * num(&r[a]).unwrap(),
                 patches: 1,
+                stick_fraction: 0.0,
+                stick_half_width_over_lambda: 0.0,
             })
             .collect()
     };

@@ -16,5 +16,6 @@ mod fe_reach;
 mod fe_small_ar;
 mod fe_tangent;
 mod fe_westergaard;
+mod stick_zone;
 mod two_scale_linear;
 mod vtk;

@@ -148,6 +148,7 @@ fn series_reads_back_with_vtkio() {
             ("displacement_over_lambda", 3),
             ("reference_position_over_lambda", 3),
             ("in_contact", 1),
+            ("in_stick", 1),
             ("contact_pressure_over_estar", 1),
             ("contact_shear_over_estar", 1),
             ("slip_over_lambda", 1),
@@ -169,9 +170,15 @@ fn series_reads_back_with_vtkio() {
         // the face values at the face nodes, 0 elsewhere
         let (slip, _) = array(&piece.data.point, "slip_over_lambda");
         let (contact, _) = array(&piece.data.point, "in_contact");
+        let (stick, _) = array(&piece.data.point, "in_stick");
         for (k, &n) in st.deformed.bottom.iter().enumerate() {
             assert_eq!(slip[n], st.face_slip_over_lambda[k]);
             assert_eq!(contact[n], f64::from(u8::from(st.deformed.in_contact[k])));
+            assert_eq!(stick[n], f64::from(u8::from(st.deformed.in_stick[k])));
+            assert!(
+                contact[n] == 1.0 || stick[n] == 0.0,
+                "a free node does not stick"
+            );
             if !st.deformed.in_contact[k] {
                 assert_eq!(slip[n], 0.0);
             }
@@ -179,7 +186,7 @@ fn series_reads_back_with_vtkio() {
         let interior = (0..points).filter(|n| !st.deformed.bottom.contains(n));
         assert!(interior
             .into_iter()
-            .all(|n| slip[n] == 0.0 && contact[n] == 0.0));
+            .all(|n| slip[n] == 0.0 && contact[n] == 0.0 && stick[n] == 0.0));
     }
     // the collection lists every step, its time the CSV's slab displacement
     let entries = collection_entries(written.last().unwrap());
@@ -350,7 +357,8 @@ fn a_folder_that_cannot_be_written_is_named_and_nothing_is_left() {
 }
 
 /// `wavy solve --vtk DIR` writes one step per CSV row and the collection, whose times are the
-/// rows' slab displacements; a curve that stops short writes no series.
+/// rows' slab displacements; a curve that stops short writes the series of its converged rows,
+/// and the collection says it is incomplete and why.
 #[test]
 fn the_command_line_writes_the_series_of_its_rows() {
     let dir = tempfile::tempdir().expect("a temporary folder");
@@ -382,8 +390,24 @@ fn the_command_line_writes_the_series_of_its_rows() {
     let stopped = dir.path().join("stopped");
     let o = run(&["--mesh", "8", "--until-a-over-lambda", "0.45"], &stopped);
     assert_eq!(o.status.code(), Some(1));
+    let rows = String::from_utf8(o.stdout).expect("UTF-8").lines().count() - 1;
+    let entries = collection_entries(&stopped.join(COLLECTION_FILE));
     assert!(
-        !stopped.exists(),
-        "a curve that stops short writes no series"
+        rows > 0 && entries.len() == rows,
+        "{rows} rows, {entries:?}"
+    );
+    assert!(entries
+        .iter()
+        .all(|(file, _, _)| stopped.join(file).is_file()));
+    let pvd = std::fs::read_to_string(stopped.join(COLLECTION_FILE)).unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    let reason = stderr.trim_end().trim_start_matches("error: ");
+    assert!(
+        pvd.contains("<Collection status=\"incomplete\" reason=\"") && pvd.contains("INCOMPLETE"),
+        "{pvd}"
+    );
+    assert!(
+        pvd.contains(&reason.replace('"', "&quot;")),
+        "{reason}\n{pvd}"
     );
 }

@@ -5,6 +5,7 @@
 
 use crate::fe::contact::edge_rule::{edge_position, loaded_edge_node};
 use crate::fe::contact::patches::{contact_fraction, contact_patches};
+use crate::fe::contact::stick_zone::{stick_nodes, stick_zone};
 use crate::fe::model::{Model, State};
 use crate::fe::newton::assembly::Assembly;
 use crate::fe::{CurvePoint, DeformedState, SolveOptions};
@@ -61,6 +62,7 @@ pub(crate) fn measure(
         EdgeAt::OutermostPatch(event) => event,
     };
     let patches = contact_patches(model, st, &f.grad, opts, event);
+    let stick = stick_zone(model, st, &patches);
     let a_over_lambda = match edge {
         EdgeAt::Node(k) => edge_position(model, st, k, opts.edge_rule),
         EdgeAt::OutermostPatch(_) => patches.last().map_or(0.0, |p| p[1]),
@@ -75,6 +77,8 @@ pub(crate) fn measure(
             active_nodes: st.active.iter().filter(|&&b| b).count(),
             contact_fraction: contact_fraction(&patches),
             patches: patches.len(),
+            stick_fraction: stick.fraction,
+            stick_half_width_over_lambda: stick.central_half_width,
         },
         grad: f.grad,
         patches,
@@ -122,6 +126,7 @@ pub(crate) fn deformed_state(model: &Model, st: &State, grad: &[f64], estar: f64
         quads: model.mesh.quads.clone(),
         bottom: b.clone(),
         in_contact: st.active.clone(),
+        in_stick: stick_nodes(model, st),
         contact_pressure_over_estar: (0..n).map(|k| normal[k] / trib(k) / estar).collect(),
         contact_shear_over_estar: (0..n).map(|k| tangential[k] / trib(k) / estar).collect(),
     }

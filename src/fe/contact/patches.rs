@@ -46,17 +46,7 @@ pub(crate) fn contact_patches(
     let x = |i: usize| st.x[b[i]][0];
     let phi = |loaded: usize, free: usize| rule.fraction(model, st, loaded, free);
     let mut patches = Vec::new();
-    let mut i = 0;
-    while i <= last {
-        if !loaded[i] {
-            i += 1;
-            continue;
-        }
-        let i0 = i;
-        while i < last && loaded[i + 1] {
-            i += 1;
-        }
-        let i1 = i;
+    for [i0, i1] in runs(&loaded) {
         let start = if i0 == 0 {
             x(0)
         } else {
@@ -70,12 +60,46 @@ pub(crate) fn contact_patches(
             x(i1) + phi(i1, i1 + 1) * (x(i1 + 1) - x(i1))
         };
         patches.push([start, end]);
-        i += 1;
     }
     patches
+}
+
+/// The maximal runs of `true` in `flags`, as `[first, last]` index pairs in order.
+pub(crate) fn runs(flags: &[bool]) -> Vec<[usize; 2]> {
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < flags.len() {
+        if !flags[i] {
+            i += 1;
+            continue;
+        }
+        let first = i;
+        while i + 1 < flags.len() && flags[i + 1] {
+            i += 1;
+        }
+        out.push([first, i]);
+        i += 1;
+    }
+    out
 }
 
 /// Total contact length over λ of the patches of a half wavelength and their mirror images.
 pub fn contact_fraction(patches: &[[f64; 2]]) -> f64 {
     2.0 * patches.iter().map(|p| p[1] - p[0]).sum::<f64>()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn runs_are_the_maximal_runs_of_true() {
+        let (t, f) = (true, false);
+        assert_eq!(
+            runs(&[t, t, f, t, f, f, t, t, t]),
+            vec![[0, 1], [3, 3], [6, 8]]
+        );
+        assert_eq!(runs(&[f, f]), Vec::<[usize; 2]>::new());
+        assert_eq!(runs(&[]), Vec::<[usize; 2]>::new());
+    }
 }

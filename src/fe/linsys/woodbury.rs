@@ -136,13 +136,21 @@ impl SparseSystem {
     /// and cost a dense `m × m` solve each. At most `max_switches` changed solves; if
     /// `switch` has not settled by then, or the settled system's solution is inaccurate,
     /// the solutions of the assembled system are returned. Returns the number of changed
-    /// solves behind the solutions returned (`max_switches` when the switch gave up).
+    /// solves behind the solutions returned (`max_switches` when the switch gave up). Fails at
+    /// once, factorising nothing, when the caller asked the solve to stop
+    /// ([`crate::fe::interrupt`]).
     pub fn solve_switching_rows(
         &mut self,
         rhs: &mut [Vec<f64>],
         max_switches: usize,
         mut switch: impl FnMut(&[Vec<f64>]) -> Option<Vec<RowChange>>,
     ) -> Result<usize, LinSolveError> {
+        // a solve the caller asked to stop factorises nothing more (`crate::fe::interrupt`)
+        if crate::fe::interrupt::requested() {
+            return Err(LinSolveError::Numeric(
+                crate::fe::interrupt::INTERRUPTED.into(),
+            ));
+        }
         if self.updates.is_empty() {
             self.solve_symmetric(rhs)?;
             return Ok(0);

@@ -118,6 +118,20 @@ pub(crate) fn line_search(
     None
 }
 
+/// A failed iteration when the caller asked the solve to stop ([`crate::fe::interrupt`]): read
+/// before each iteration, so a solve stops within one iteration; the failure ends the solve,
+/// which the caller that set the flag reports as interrupted.
+fn interrupted(iteration: usize, residual: f64) -> Result<(), StepFail> {
+    match crate::fe::interrupt::requested() {
+        false => Ok(()),
+        true => Err(StepFail::Diverged {
+            iteration,
+            residual,
+            reason: crate::fe::interrupt::INTERRUPTED.into(),
+        }),
+    }
+}
+
 /// Newton iterations at a fixed active set. Returns the number of iterations.
 pub(crate) fn newton(
     model: &Model,
@@ -128,6 +142,7 @@ pub(crate) fn newton(
 ) -> Result<usize, StepFail> {
     let mut last_res = f64::NAN;
     for it in 0..=opts.max_newton_iterations {
+        interrupted(it, last_res)?;
         // convergence check on the forces alone (cached after the line search), the
         // matrix only when another iteration follows
         let Some(f) = asm.assemble(model, st, false) else {
@@ -239,6 +254,7 @@ pub(crate) fn newton_bordered(
     let potential = model.is_potential();
     let residual_merit = move |r: &[f64]| if potential { inf_norm(r) } else { l2_norm(r) };
     for it in 0..=opts.max_newton_iterations {
+        interrupted(it, last_res)?;
         // convergence check on the forces alone (cached after the line search), the
         // matrix only when another iteration follows
         let Some(f) = asm.assemble(model, st, false) else {

@@ -83,3 +83,15 @@ pub fn profile(text: &str) -> Result<crate::profile::Profile, InputError> {
             reason: e.to_string(),
         })
 }
+
+/// `--vtk`: a folder (created if missing), not an existing file.
+pub fn vtk_folder(path: &std::path::Path) -> Result<(), InputError> {
+    match path.exists() && !path.is_dir() {
+        false => Ok(()),
+        true => Err(InputError::Refused {
+            flag: "--vtk".into(),
+            value: path.display().to_string(),
+            reason: "is a file; give a folder (created if missing) for the series".into(),
+        }),
+    }
+}

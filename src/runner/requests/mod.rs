@@ -4,8 +4,10 @@
 //! returned as rows ([`solve_outcome`]) or as a [`request_error::RequestError`] whose `Display` is
 //! the command line's message.
 
+pub mod cost_estimate;
 pub mod eval_request;
 pub mod input_checks;
+pub mod profile_mesh;
 pub mod request_error;
 pub mod solve_outcome;
 pub mod solve_request;

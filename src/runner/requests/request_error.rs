@@ -37,6 +37,10 @@ pub enum RequestError {
     /// A computation that failed, the whole message (which inputs, what stopped).
     #[error("{0}")]
     Failed(String),
+    /// The solve would need more memory than the caller allows or the machine has available
+    /// (`cost_estimate`); the message names the estimate. Python: `MemoryError`.
+    #[error("{0}")]
+    Memory(String),
     /// The solver stopped before the target; `partial` holds the points converged before.
     #[error("the solver stopped: {error}")]
     Stopped {

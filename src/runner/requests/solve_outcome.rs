@@ -57,7 +57,7 @@ enum PointValue {
 
 /// The curve point's columns, in the order of [`CurvePoint::CSV_HEADER`] (a test keeps the two
 /// equal).
-const POINT_COLUMNS: [(&str, PointValue); 8] = [
+const POINT_COLUMNS: [(&str, PointValue); 10] = [
     ("a_over_lambda", PointValue::Real(|p| p.a_over_lambda)),
     ("p_over_estar", PointValue::Real(|p| p.p_over_estar)),
     (
@@ -75,6 +75,11 @@ const POINT_COLUMNS: [(&str, PointValue); 8] = [
     ("active_nodes", PointValue::Count(|p| p.active_nodes)),
     ("contact_fraction", PointValue::Real(|p| p.contact_fraction)),
     ("patches", PointValue::Count(|p| p.patches)),
+    ("stick_fraction", PointValue::Real(|p| p.stick_fraction)),
+    (
+        "stick_half_width_over_lambda",
+        PointValue::Real(|p| p.stick_half_width_over_lambda),
+    ),
 ];
 
 /// What a solve gave: the converged rows and what they cost (also the converged part of a

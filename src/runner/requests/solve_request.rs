@@ -10,11 +10,15 @@ use crate::fe::{
     self, CurvePoint, Kinematics, LayerProblem, LoadDirection, MeshLevel, SolveOptions, SolveWork,
 };
 use crate::profile::{FinerHarmonics, Profile};
-use crate::runner::requests::input_checks::{non_negative, out_of_range, positive, InputError};
+use crate::runner::requests::cost_estimate::{self, CostEstimate};
+use crate::runner::requests::input_checks::{
+    non_negative, out_of_range, positive, vtk_folder, InputError,
+};
+use crate::runner::requests::profile_mesh;
 use crate::runner::requests::request_error::RequestError;
 use crate::runner::requests::solve_outcome::{ExtraColumn, SolveOutcome, SolveRow};
 use crate::runner::sweep::fe_cases::{FeCase, FePhysics};
-use crate::vtk::{write_series, VtkStep};
+use crate::vtk::{write_incomplete_series, write_series, VtkStep};
 use std::ops::ControlFlow;
 use std::path::Path;
 
@@ -51,6 +55,9 @@ pub struct SolveRequest {
     pub until_contact_fraction: Option<f64>,
     /// Then unload back to zero load.
     pub unload: bool,
+    /// Refuse the solve when its estimated peak memory is above this many bytes
+    /// ([`CostEstimate::check`]; it is also refused above the memory available).
+    pub max_memory: Option<u64>,
 }
 
 impl SolveRequest {
@@ -72,6 +79,7 @@ impl SolveRequest {
             until_p_over_estar: None,
             until_contact_fraction: None,
             unload: false,
+            max_memory: None,
         }
     }
 
@@ -175,25 +183,21 @@ impl SolveRequest {
             finer_harmonics: self.finer_harmonics,
             ..case.problem
         };
-        // a profile the mesh cannot resolve is refused here, before any solve
-        if let Err(e) = fe::validate(&problem, &case.options) {
-            if matches!(
-                e,
-                fe::SolveError::ProfileUnresolved { .. } | fe::SolveError::ProfileTooSteep { .. }
-            ) {
-                return Err(InputError::Refused {
-                    flag: "--profile".into(),
-                    value: problem.profile().to_string(),
-                    reason: e.to_string(),
-                }
-                .into());
-            }
-        }
+        // a profile gets a mesh that resolves it, or is refused here, before any solve
+        let (mesh, mesh_note) = profile_mesh::choose(&problem, &case.options, self.mesh.is_some())?;
+        // the memory it needs, refused above the caller's cap or what is available
+        let cost = CostEstimate::of(mesh);
+        cost.check(self.max_memory)?;
+        let told = (mesh.counts().0 >= cost_estimate::TOLD_FROM_ELEMENTS).then(|| cost.describe());
         Ok(PreparedSolve {
             request: *self,
             problem,
-            options: case.options,
+            options: SolveOptions {
+                mesh,
+                ..case.options
+            },
             tolerance_choice,
+            notes: mesh_note.into_iter().chain(told).collect(),
         })
     }
 }
@@ -232,6 +236,10 @@ pub struct PreparedSolve {
     pub options: SolveOptions,
     /// With `tolerance`: the measured choice behind the mesh (the command line tells it).
     pub tolerance_choice: Option<Choice>,
+    /// What the command line tells on stderr and Python keeps in the result's notes: for a
+    /// profile given no mesh the finer mesh chosen to resolve it; from mesh 256 on the
+    /// estimated memory and time ([`CostEstimate`]).
+    pub notes: Vec<String>,
 }
 
 impl PreparedSolve {
@@ -292,7 +300,7 @@ impl PreparedSolve {
         };
         let solved = fe::solve_curve(&self.problem, &coarse_options, &mut |_| keep_going());
         if let Err(f) = &solved {
-            if let fe::SolveError::Stopped { .. } = f.error {
+            if matches!(f.error, fe::SolveError::Stopped { .. }) || fe::interrupt::requested() {
                 return Err(RequestError::Interrupted {
                     partial: Box::new(self.outcome(vec![], SolveWork::default())),
                 });
@@ -318,7 +326,10 @@ impl PreparedSolve {
     /// `on_row` stops the solve ([`RequestError::Interrupted`]). `coarse` is what
     /// [`Self::coarse_reference`] returned. With `vtk`, a complete curve also writes the
     /// deformed state of every converged point into that folder as a ParaView time series
-    /// ([`crate::vtk::write_series`]); a curve that stops short writes none.
+    /// ([`crate::vtk::write_series`]); a curve that stops short writes its converged states
+    /// and a collection that says it is incomplete and why
+    /// ([`crate::vtk::write_incomplete_series`]), and still fails. A solve stopped by
+    /// [`fe::interrupt`] (the caller's flag) is [`RequestError::Interrupted`].
     pub fn run(
         &self,
         coarse: Option<&CoarseReference>,
@@ -363,15 +374,29 @@ impl PreparedSolve {
                 }
                 Ok(self.outcome(rows, curve.work))
             }
-            Err(failure) if matches!(failure.error, fe::SolveError::Stopped { .. }) => {
+            Err(failure)
+                if matches!(failure.error, fe::SolveError::Stopped { .. })
+                    || fe::interrupt::requested() =>
+            {
                 Err(RequestError::Interrupted {
                     partial: Box::new(self.outcome(rows, SolveWork::default())),
                 })
             }
-            Err(failure) => Err(RequestError::Stopped {
-                error: failure.error,
-                partial: Box::new(self.outcome(rows, SolveWork::default())),
-            }),
+            Err(failure) => {
+                let stopped = RequestError::Stopped {
+                    error: failure.error,
+                    partial: Box::new(self.outcome(rows, SolveWork::default())),
+                };
+                if let Some(dir) = vtk {
+                    let reason = stopped.to_string();
+                    if let Err(e) = write_incomplete_series(dir, &vtk_steps, &reason) {
+                        return Err(RequestError::Failed(format!(
+                            "{reason}; the VTK series of its converged points could not be written either: {e}"
+                        )));
+                    }
+                }
+                Err(stopped)
+            }
         }
     }
 }
@@ -384,6 +409,9 @@ pub fn solve(
     vtk: Option<&Path>,
     on_row: &mut dyn FnMut(Option<&SolveRow>) -> ControlFlow<()>,
 ) -> Result<SolveOutcome, RequestError> {
+    if let Some(dir) = vtk {
+        vtk_folder(dir)?;
+    }
     let prepared = request.prepare()?;
     let coarse = prepared.coarse_reference(&mut || on_row(None))?;
     prepared.run(coarse.as_ref(), vtk, &mut |row| on_row(Some(row)))

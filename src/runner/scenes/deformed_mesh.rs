@@ -71,10 +71,19 @@ fn run(title: &str, s: &DeformedMeshScene, opts: &RunOptions) -> Result<SceneRes
         tau,
         s.fe.options(&[surface.aspect_ratio], opts.fe_mesh_override),
     );
-    let curve = fe::solve_curve(&case.problem, &case.options, &mut |_| {
+    // one case, not cached: its progress as the sweeps show theirs
+    let bar = crate::runner::sweep::progress_bar(1);
+    let solved = fe::solve_curve(&case.problem, &case.options, &mut |p| {
+        if let Some(b) = &bar {
+            b.set_message(format!("deformed mesh: a/λ = {:.4}", p.a_over_lambda));
+        }
         ControlFlow::Continue(())
-    })
-    .map_err(|f| anyhow!("the FE solve for the deformed mesh stopped: {}", f.error))?;
+    });
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let curve =
+        solved.map_err(|f| anyhow!("the FE solve for the deformed mesh stopped: {}", f.error))?;
     let last = *curve
         .points
         .last()

@@ -75,6 +75,8 @@ mod tests {
             active_nodes: 1,
             contact_fraction: 2.0 * a,
             patches: 1,
+            stick_fraction: 0.0,
+            stick_half_width_over_lambda: 0.0,
         }
     }
 

@@ -287,6 +287,8 @@ impl Tables {
             "a_over_lambda",
             "p_over_estar",
             "p_over_estar_reaction",
+            "stick_half_width_over_lambda",
+            "stick_fraction",
         ];
         if with_estimates {
             fe_points_header.push("error_estimate");
@@ -341,6 +343,8 @@ impl Tables {
                 p.a_over_lambda.into(),
                 p.p_over_estar.into(),
                 p.p_over_estar_reaction.into(),
+                p.stick_half_width_over_lambda.into(),
+                p.stick_fraction.into(),
             ];
             if self.with_estimates {
                 let e = estimate.and_then(|e| e.per_point).and_then(|e| e[i]);

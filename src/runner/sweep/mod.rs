@@ -197,7 +197,10 @@ fn cached_result<R: Cacheable>(text: &str, key_text: &str) -> Option<R> {
     R::from_cache_text(&body)
 }
 
-fn progress_bar(len: usize) -> Option<indicatif::ProgressBar> {
+/// The progress of `len` cases on stderr when it is a terminal (none when piped or with no
+/// cases): cases done of total and the elapsed time, redrawn every quarter second so that a
+/// long case shows the time going by.
+pub fn progress_bar(len: usize) -> Option<indicatif::ProgressBar> {
     if len == 0 || !std::io::stderr().is_terminal() {
         return None;
     }
@@ -208,6 +211,7 @@ fn progress_bar(len: usize) -> Option<indicatif::ProgressBar> {
         )
         .expect("a valid template"),
     );
+    bar.enable_steady_tick(std::time::Duration::from_millis(250));
     Some(bar)
 }
 
