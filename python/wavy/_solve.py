@@ -60,7 +60,8 @@ def solve(
         ``until_p_over_estar`` the cap on the way. Default None: 0.45.
     until_p_over_estar : float, optional
         Instead: load until the mean pressure p̄/E* is this, > 0 (the last row is the state
-        at that load). Default None.
+        at that load). A sinusoid is capped on the way by ``until_a_over_lambda``, a profile
+        by full contact. Default None.
     unload : bool, optional
         Then unload back to zero load, the friction history carried through (``branch``
         says which rows are unloading). Not with ``error_estimate``. Default False.

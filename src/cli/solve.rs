@@ -69,7 +69,8 @@ pub struct SolveArgs {
     pub until_a_over_lambda: f64,
     /// Instead of a/λ: load until the mean pressure p̄/E* is this (> 0; the last loading row
     /// is the state at that load); --until-a-over-lambda then caps the contact half-width on
-    /// the way.
+    /// the way (for a profile, full contact is the cap: its outermost patch edge reaches the
+    /// valley long before).
     #[arg(long, allow_hyphen_values = true)]
     pub until_p_over_estar: Option<f64>,
     /// Instead of a/λ: load until the contact fraction (total contact length over λ; 2a/λ for

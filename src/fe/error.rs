@@ -148,6 +148,16 @@ pub enum SolveError {
         /// The requested `until_p_over_estar`.
         target: f64,
     },
+    /// A profile reached full contact (every face node in contact) before the mean pressure
+    /// reached its target ([`super::SolveOptions::until_p_over_estar`]): no contact state of the
+    /// mesh carries more.
+    #[error("full contact was reached at p̄/E* = {p_over_estar:.4}, short of the target p̄/E* = {target:.4}: lower the target below full contact")]
+    PressureTargetBeyondFullContact {
+        /// Mean pressure at full contact.
+        p_over_estar: f64,
+        /// The requested `until_p_over_estar`.
+        target: f64,
+    },
     /// The load-step budget was exhausted before reaching the target contact width.
     #[error("maximum number of load steps ({steps}) reached at a/λ = {a_over_lambda:.4}")]
     TooManySteps {
@@ -194,11 +204,10 @@ pub(crate) enum StepFail {
 }
 
 /// The advice of [`SolveError::PressureTargetBeyondLimit`]: one the caller can follow. At
-/// a/λ ≈ ½ (a profile's outermost patch edge reaches the symmetry line before full contact) no
-/// larger `until_a_over_lambda` is allowed.
+/// a/λ ≈ ½ no larger `until_a_over_lambda` is allowed.
 fn pressure_limit_advice(a_over_lambda: f64) -> &'static str {
     if a_over_lambda >= 0.4995 {
-        "the contact reached the symmetry line (a profile's outermost patch edge does before full contact), so no larger until_a_over_lambda exists: lower the target, or load to a contact fraction (until_contact_fraction) instead"
+        "no larger until_a_over_lambda exists (it must stay below 0.5): lower the target"
     } else {
         "raise until_a_over_lambda (below 0.5) or lower the target"
     }

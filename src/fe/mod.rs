@@ -155,7 +155,8 @@ pub struct SolveOptions {
     /// Instead: load until the mean pressure `p̄/E*` is this (> 0): the last point is the
     /// state at this mean pressure (within 10⁻⁹ relative), not an edge event; `until_a_over_lambda`
     /// is then the largest contact half-width allowed on the way (a curve that reaches it
-    /// first is incomplete).
+    /// first is incomplete). For a profile the cap is full contact instead: its outermost
+    /// patch edge reaches ½ when the valley's crest touches, long before.
     pub until_p_over_estar: Option<f64>,
     /// Instead: load until the contact fraction (total contact length over λ,
     /// [`patches`]) reaches this (in `(0, 1)`): the last point is the first node event at or

@@ -141,6 +141,58 @@ fn several_patches_stay_in_equilibrium() {
     }
 }
 
+/// A profile loaded to a mean pressure goes on after its outermost patch edge reaches the
+/// valley (a/λ = ½, long before full contact): its cap is full contact, not the half-width.
+/// `1:0.1,4:0.05` on mesh 32: the outermost edge reaches ½ first, the load lands on a target
+/// above that pressure with the contact still partial, and a target beyond full contact is
+/// refused as such.
+#[test]
+fn a_profile_loads_to_a_pressure_past_its_outermost_edge() {
+    let profile: Profile = "1:0.1,4:0.05".parse().unwrap();
+    let pb = problem(&profile, 0.0);
+    let mesh = MeshLevel::along_face(32);
+    let fraction = SolveOptions {
+        mesh,
+        until_contact_fraction: Some(0.95),
+        ..Default::default()
+    };
+    let to_fraction = curve(&pb, &fraction);
+    let at_valley = to_fraction
+        .points
+        .iter()
+        .find(|p| p.a_over_lambda >= 0.5)
+        .expect("the outermost edge reaches the valley before 95 % contact");
+    assert!(at_valley.contact_fraction < 0.95, "{at_valley:?}");
+    let last = to_fraction.points.last().unwrap();
+    let target = 0.5 * (at_valley.p_over_estar + last.p_over_estar);
+    let to_pressure = SolveOptions {
+        mesh,
+        until_p_over_estar: Some(target),
+        ..Default::default()
+    };
+    let landed = curve(&pb, &to_pressure);
+    let end = landed.points.last().unwrap();
+    assert!((end.p_over_estar / target - 1.0).abs() <= 1e-9, "{end:?}");
+    assert!(
+        end.contact_fraction < 1.0 && end.a_over_lambda >= 0.5,
+        "{end:?}"
+    );
+    let beyond = SolveOptions {
+        until_p_over_estar: Some(100.0),
+        ..to_pressure
+    };
+    let failed = solve_curve(&pb, &beyond, &mut |_| ControlFlow::Continue(()))
+        .expect_err("no contact state carries p̄/E* = 100");
+    assert!(
+        matches!(
+            failed.error,
+            SolveError::PressureTargetBeyondFullContact { target, .. } if target == 100.0
+        ),
+        "{}",
+        failed.error
+    );
+}
+
 /// A frictionless loading–unloading loop on a two-scale profile closes: unloading revisits the
 /// loading states at the loading displacements (the contact is reversible), and ends at zero
 /// load.

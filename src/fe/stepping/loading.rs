@@ -175,7 +175,10 @@ pub(crate) fn loading_branch(
     on_step: &mut dyn FnMut(&CurvePoint, Converged<'_>) -> ControlFlow<()>,
 ) -> Result<LoadPath, Box<CurveFailure>> {
     let mut path = LoadPath::start(model, opts);
-    let targets = Targets(opts);
+    let targets = Targets {
+        opts,
+        profile: !model.indenter.profile.is_sinusoid(),
+    };
     let node_events =
         opts.stepping == Stepping::NodeEvents || !model.indenter.profile.is_sinusoid();
     let mut step = 1;
@@ -239,28 +242,41 @@ pub(crate) fn loading_branch(
 
 /// The three stop targets of the loading branch: the contact width, the mean pressure and the
 /// contact fraction ([`SolveOptions`]).
-struct Targets<'a>(&'a SolveOptions);
+struct Targets<'a> {
+    opts: &'a SolveOptions,
+    /// The indenter is a profile with finer harmonics: its contact half-width (the outermost
+    /// patch edge) reaches ½ when the valley's crest touches, long before full contact, so with
+    /// a pressure target it is no cap; full contact is.
+    profile: bool,
+}
 
 impl Targets<'_> {
     /// The mean-pressure target, reached when loading landed on it (within its tolerance, so
     /// possibly a hair below).
     fn pressure_reached(&self, path: &LoadPath) -> bool {
-        match (self.0.until_p_over_estar, path.points.last()) {
+        match (self.opts.until_p_over_estar, path.points.last()) {
             (Some(target), Some(p)) => p.p_over_estar >= target * (1.0 - PRESSURE_TARGET_RTOL),
             _ => false,
         }
     }
 
     fn fraction_reached(&self, path: &LoadPath) -> bool {
-        match (self.0.until_contact_fraction, path.points.last()) {
+        match (self.opts.until_contact_fraction, path.points.last()) {
             (Some(target), Some(p)) => p.contact_fraction >= target,
             _ => false,
         }
     }
 
-    /// With a contact-fraction target the contact width is no stop.
+    /// With a contact-fraction target the contact width is no stop, nor for a profile loaded to
+    /// a pressure.
     fn width_reached(&self, path: &LoadPath) -> bool {
-        self.0.until_contact_fraction.is_none() && path.a >= self.0.until_a_over_lambda
+        self.opts.until_contact_fraction.is_none()
+            && !self.profile_to_pressure()
+            && path.a >= self.opts.until_a_over_lambda
+    }
+
+    fn profile_to_pressure(&self) -> bool {
+        self.profile && self.opts.until_p_over_estar.is_some()
     }
 
     fn any_reached(&self, path: &LoadPath) -> bool {
@@ -270,8 +286,16 @@ impl Targets<'_> {
     /// The branch as it ended, or the error that says which target it fell short of (full
     /// contact came first).
     fn check_reached(&self, path: LoadPath) -> Result<LoadPath, Box<CurveFailure>> {
-        let opts = self.0;
+        let opts = self.opts;
         if let Some(target) = opts.until_p_over_estar {
+            let p_over_estar = path.points.last().map_or(0.0, |p| p.p_over_estar);
+            if self.profile_to_pressure() && !self.pressure_reached(&path) {
+                let error = SolveError::PressureTargetBeyondFullContact {
+                    p_over_estar,
+                    target,
+                };
+                return Err(path.fail(error));
+            }
             if !self.pressure_reached(&path) && path.a >= opts.until_a_over_lambda {
                 let error = SolveError::PressureTargetBeyondLimit {
                     a_over_lambda: path.a,
