@@ -242,6 +242,13 @@ pub struct PreparedSolve {
     pub notes: Vec<String>,
 }
 
+/// A solve that ended because its caller asked: a step callback's `Break`
+/// ([`fe::SolveError::Stopped`]) or the flag of [`fe::interrupt`], whatever error the
+/// interrupted iteration left.
+fn stopped_by_caller(error: &fe::SolveError) -> bool {
+    matches!(error, fe::SolveError::Stopped { .. }) || fe::interrupt::requested()
+}
+
 impl PreparedSolve {
     /// The mesh solved.
     pub fn mesh(&self) -> MeshLevel {
@@ -300,7 +307,7 @@ impl PreparedSolve {
         };
         let solved = fe::solve_curve(&self.problem, &coarse_options, &mut |_| keep_going());
         if let Err(f) = &solved {
-            if matches!(f.error, fe::SolveError::Stopped { .. }) || fe::interrupt::requested() {
+            if stopped_by_caller(&f.error) {
                 return Err(RequestError::Interrupted {
                     partial: Box::new(self.outcome(vec![], SolveWork::default())),
                 });
@@ -374,14 +381,9 @@ impl PreparedSolve {
                 }
                 Ok(self.outcome(rows, curve.work))
             }
-            Err(failure)
-                if matches!(failure.error, fe::SolveError::Stopped { .. })
-                    || fe::interrupt::requested() =>
-            {
-                Err(RequestError::Interrupted {
-                    partial: Box::new(self.outcome(rows, SolveWork::default())),
-                })
-            }
+            Err(failure) if stopped_by_caller(&failure.error) => Err(RequestError::Interrupted {
+                partial: Box::new(self.outcome(rows, SolveWork::default())),
+            }),
             Err(failure) => {
                 let stopped = RequestError::Stopped {
                     error: failure.error,
