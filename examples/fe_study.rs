@@ -3,6 +3,7 @@
 //! PEAK (grading peak_ratio), FIRST (first_layer_over_dx), RULE (fraction|power|periodic), KIN (finite|linear),
 //! DUMP (print the curves), PRED (tangent|extrap), PHI_CALIB (calibrate `DISCRETE_EDGE_FRACTION` instead),
 //! ASPECT_CALIB (calibrate `EDGE_FRACTION_BY_ASPECT` instead).
+use faer::prelude::*;
 use std::ops::ControlFlow;
 use std::time::Instant;
 use wavy::fe::*;
@@ -136,7 +137,126 @@ fn calibrate_aspect() {
     );
 }
 
+/// The state's last loaded face node `i` and its three quantities the progress law of
+/// `EDGE_PROGRESS_BY_FORCE_RATIO` reads: the force ratio `ρ = f_i/f_{i−1}`, the mean element
+/// aspect `r` of the elements on either side of `i`, and the two ends `E₀`, `E₁` of the edge's
+/// travel (the edge rule's positions with `i` and with `i + 1` as the event's node).
+fn edge_progress_inputs(s: &DeformedState) -> Option<(f64, f64, f64, f64)> {
+    let n = s.bottom.len();
+    let x = |k: usize| s.nodes[s.bottom[k]][0];
+    let trib = |k: usize| {
+        0.5 * (if k > 0 { x(k) - x(k - 1) } else { 0.0 }
+            + if k + 1 < n { x(k + 1) - x(k) } else { 0.0 })
+    };
+    let f: Vec<f64> = (0..n)
+        .map(|k| s.contact_pressure_over_estar[k] * trib(k))
+        .collect();
+    let scale = f.iter().cloned().fold(0.0, f64::max);
+    let i = (0..n)
+        .rev()
+        .find(|&k| s.in_contact[k] && f[k] > 1e-8 * scale)?;
+    if i < 2 || i + 1 >= n {
+        return None;
+    }
+    // the face node's neighbour above: the structured mesh numbers rows of n nodes
+    let aspect = |a: usize, b: usize| {
+        let h = |k: usize| s.nodes[s.bottom[k] + n][1] - s.nodes[s.bottom[k]][1];
+        0.5 * (h(a) + h(b)) / (x(b) - x(a))
+    };
+    let c = EDGE_FRACTION_BY_ASPECT;
+    let phi = |r: f64| c[0] + c[1] * r + c[2] * r * r;
+    let (r0, r1) = (aspect(i - 1, i), aspect(i, i + 1));
+    let e0 = x(i - 1) + phi(r0) * (x(i) - x(i - 1));
+    let e1 = x(i) + phi(r1) * (x(i + 1) - x(i));
+    Some((f[i] / f[i - 1], 0.5 * (r0 + r1), e0, e1))
+}
+
+/// Calibration of `EDGE_PROGRESS_BY_FORCE_RATIO`: states between edge events on the calibration
+/// problem (mesh 64 × 32, gradings (peak ratio, first layer) ∈ {1, 4, 16} × {0.5, 1} and (2, 2)),
+/// at loads a quarter, half and three quarters of the way between consecutive events with
+/// a/λ ∈ [0.05, 0.30]; each gives (ρ, r, t) with t the exact edge's place between `E₀` and `E₁`;
+/// then the least-squares `t = ρ + (c₀ + c₁ r) ρ² + (c₂ + c₃ r) ρ³`.
+fn calibrate_progress() {
+    let pb = calibration_problem();
+    let gradings = [
+        (1.0, 1.0),
+        (1.0, 0.5),
+        (4.0, 1.0),
+        (4.0, 0.5),
+        (16.0, 1.0),
+        (16.0, 0.5),
+        (2.0, 2.0),
+    ];
+    let mut rows: Vec<(f64, f64, f64)> = Vec::new();
+    for (peak_ratio, first_layer_over_dx) in gradings {
+        let o = SolveOptions {
+            mesh: MeshLevel::Elements { nx: 64, ny: 32 },
+            grading: Grading {
+                peak_ratio,
+                first_layer_over_dx,
+            },
+            until_a_over_lambda: 0.32,
+            ..SolveOptions::default()
+        };
+        let events = solve_curve(&pb, &o, &mut |_| ControlFlow::Continue(()))
+            .expect("linear curve")
+            .points;
+        for w in events.windows(2) {
+            if !(0.05..=0.30).contains(&westergaard_a(w[0].p_over_estar)) {
+                continue;
+            }
+            for q in [0.25, 0.5, 0.75] {
+                let p = w[0].p_over_estar + q * (w[1].p_over_estar - w[0].p_over_estar);
+                let ol = SolveOptions {
+                    until_p_over_estar: Some(p),
+                    until_a_over_lambda: 0.45,
+                    ..o
+                };
+                let c = solve_curve(&pb, &ol, &mut |_| ControlFlow::Continue(())).expect("landing");
+                let Some((rho, r, e0, e1)) = edge_progress_inputs(&c.final_state) else {
+                    continue;
+                };
+                let a = westergaard_a(c.points.last().expect("a point").p_over_estar);
+                rows.push((rho, r, (a - e0) / (e1 - e0)));
+            }
+        }
+    }
+    // least squares of t − ρ = (c₀ + c₁ r) ρ² + (c₂ + c₃ r) ρ³ (column-pivoted QR, faer)
+    let basis = |rho: f64, r: f64| [rho * rho, r * rho * rho, rho.powi(3), r * rho.powi(3)];
+    let design = faer::Mat::from_fn(rows.len(), 4, |i, k| basis(rows[i].0, rows[i].1)[k]);
+    let rhs = faer::Mat::from_fn(rows.len(), 1, |i, _| rows[i].2 - rows[i].0);
+    let solution = design.col_piv_qr().solve_lstsq(&rhs);
+    let c: Vec<f64> = (0..4).map(|k| solution[(k, 0)]).collect();
+    let resid: Vec<f64> = rows
+        .iter()
+        .map(|&(rho, r, t)| {
+            t - rho
+                - basis(rho, r)
+                    .iter()
+                    .zip(&c)
+                    .map(|(b, c)| b * c)
+                    .sum::<f64>()
+        })
+        .collect();
+    if std::env::var_os("DUMP").is_some() {
+        for (row, e) in rows.iter().zip(&resid) {
+            println!("{:.4} {:.4} {:.4} {:+.4}", row.0, row.1, row.2, e);
+        }
+    }
+    println!(
+        "t = rho + ({:.4} + {:.4} r) rho^2 + ({:.4} + {:.4} r) rho^3 from {} states; residuals {:.4} .. {:.4}, rms {:.4}",
+        c[0], c[1], c[2], c[3], rows.len(),
+        resid.iter().cloned().fold(f64::INFINITY, f64::min),
+        resid.iter().cloned().fold(f64::NEG_INFINITY, f64::max),
+        (resid.iter().map(|e| e * e).sum::<f64>() / resid.len() as f64).sqrt()
+    );
+}
+
 fn main() {
+    if std::env::var_os("PROGRESS_CALIB").is_some() {
+        calibrate_progress();
+        return;
+    }
     let ar: f64 = env("AR", "0.1").parse().unwrap();
     let levels: Vec<usize> = env("LEVELS", "32,48,72")
         .split(',')

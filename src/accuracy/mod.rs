@@ -7,6 +7,7 @@
 //! [`measured`] holds the committed measurements and picks the cheapest tier that meets a
 //! tolerance.
 
+pub mod contact_fraction;
 pub mod extrapolation;
 pub mod measured;
 

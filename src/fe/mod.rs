@@ -57,6 +57,7 @@ pub mod stepping;
 
 pub use contact::edge_rule::{EdgeRule, DISCRETE_EDGE_FRACTION, EDGE_FRACTION_BY_ASPECT};
 pub use contact::friction::{CoulombOrowan, Interface};
+pub use contact::patch_edge::EDGE_PROGRESS_BY_FORCE_RATIO;
 pub use convergence::{
     convergence_table, mesh_convergence, mesh_convergence_levels, p_at, ConvergenceRow,
     ConvergenceTable,
@@ -160,7 +161,8 @@ pub struct SolveOptions {
     pub until_p_over_estar: Option<f64>,
     /// Instead: load until the contact fraction (total contact length over λ,
     /// [`patches`]) reaches this (in `(0, 1)`): the last point is the first node event at or
-    /// beyond it; `until_a_over_lambda` is then not a stop. A profile's counterpart of
+    /// beyond it (once every node touches, the first of the slab steps that let the last openings
+    /// close, `stepping::loading`); `until_a_over_lambda` is then not a stop. A profile's counterpart of
     /// `until_a_over_lambda`.
     #[serde(default)]
     pub until_contact_fraction: Option<f64>,

@@ -103,6 +103,7 @@ const MUST_BE_CHECKED: &[&str] = &[
     "figures/speed_accuracy_reference.csv",
     "figures/speed_accuracy_trade.csv",
     "figures/two_scale_errors.csv",
+    "figures/two_scale_separation_errors.csv",
 ];
 
 /// Docs that restate CSV numbers in sentences; each must hold at least one inline marker.

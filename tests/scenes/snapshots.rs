@@ -13,7 +13,12 @@ use crate::in_snapshot_folder;
 use wavy::runner::{run_spec_file, RunOptions};
 
 /// Specs too heavy for make test (see the module docs).
-const HEAVY_SPECS: [&str; 3] = ["speed_accuracy.toml", "two_scale.toml", "hysteresis.toml"];
+const HEAVY_SPECS: [&str; 4] = [
+    "speed_accuracy.toml",
+    "two_scale.toml",
+    "two_scale_separation.toml",
+    "hysteresis.toml",
+];
 
 fn test_options(cache: &std::path::Path) -> RunOptions {
     let mut opts = RunOptions {

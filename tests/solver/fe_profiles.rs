@@ -269,9 +269,9 @@ fn patches_at(points: &[CurvePoint], p: f64) -> usize {
 /// Mesh convergence on a two-scale profile: the contact fraction against `p̄/E*` on meshes of
 /// 32, 48, 72 and 108 elements along the face (ratio 1.5, uniform face spacing), compared at
 /// 200 mean pressures over the curve (one to three patches). The root-mean-square change from
-/// one mesh to the next shrinks at an observed order near one (the edge rule is first order;
-/// docs/verification.md, two-scale profiles), over the whole curve and per patch count (that
-/// of the finest curve at each pressure).
+/// one mesh to the next shrinks at an observed order of about 1.5 (every patch edge placed
+/// between its events, docs/replication.md R13; docs/verification.md, two-scale profiles), over
+/// the whole curve and per patch count (that of the finest curve at each pressure).
 #[test]
 fn two_scale_curves_converge_under_refinement() {
     let profile: Profile = "1:0.1,8:0.1".parse().unwrap();
@@ -318,11 +318,6 @@ fn two_scale_curves_converge_under_refinement() {
         "whole curve: rms change of the contact fraction {}, observed orders {orders:.2?}",
         sci(&changes)
     );
-    // measured: 1.90e-2 → 1.21e-2 → 7.37e-3, orders 1.11, 1.22
-    for o in &orders {
-        assert!((0.9..=1.4).contains(o), "observed order {o}");
-    }
-    assert!(changes[2] <= 8.0e-3, "{:e}", changes[2]);
     let by_patches: Vec<(usize, Vec<f64>, Vec<f64>)> = (1..=3)
         .map(|n| {
             let at: Vec<f64> = pressures
@@ -339,24 +334,29 @@ fn two_scale_curves_converge_under_refinement() {
             (at.len(), changes, orders)
         })
         .collect();
-    // Measured, 1 patch (10 pressures, the start of the curve): 4.87e-3 → 4.37e-3 → 3.29e-3,
-    // orders 0.27, 0.69: the contact of one small crest spans a few elements, and its change
-    // is about one element's width, whichever side of a node the edge falls; it shrinks.
+    // measured: 9.46e-3 → 5.38e-3 → 2.70e-3, orders 1.39, 1.70 (the patch edges of
+    // docs/replication.md R13 between their events)
+    for o in &orders {
+        assert!((1.2..=1.9).contains(o), "observed order {o}");
+    }
+    assert!(changes[2] <= 3.1e-3, "{:e}", changes[2]);
+    // Measured, 1 patch (9 pressures, the start of the curve up to the first crest's touchdown):
+    // 2.66e-3 → 4.88e-3 → 3.97e-3: the first crest touches down at a pressure that moves with
+    // the mesh by a fraction of an element, and the nine pressures lie next to it; no order.
     let (count, changes, _) = &by_patches[0];
     assert!(*count >= 5, "{count} pressures with one patch");
-    assert!(changes.windows(2).all(|c| c[1] < c[0]), "{changes:?}");
-    assert!(changes[2] <= 3.6e-3, "{:e}", changes[2]);
-    // Measured, 2 patches (137 pressures): 1.52e-2 → 1.06e-2 → 6.81e-3, orders 0.88, 1.10;
-    // 3 patches (53 pressures): 2.75e-2 → 1.60e-2 → 9.11e-3, orders 1.34, 1.39.
+    assert!(changes.iter().all(|&c| c <= 5.5e-3), "{changes:?}");
+    // Measured, 2 patches (125 pressures): 8.39e-3 → 4.79e-3 → 2.17e-3, orders 1.38, 1.96;
+    // 3 patches (66 pressures): 1.17e-2 → 6.40e-3 → 3.32e-3, orders 1.49, 1.62.
     for (n, (count, changes, orders)) in by_patches.iter().enumerate().skip(1) {
         assert!(*count >= 20, "{count} pressures with {} patches", n + 1);
         for o in orders {
             assert!(
-                (0.75..=1.6).contains(o),
+                (1.2..=2.2).contains(o),
                 "{} patches: observed order {o}",
                 n + 1
             );
         }
-        assert!(changes[2] <= 1.0e-2, "{} patches: {:e}", n + 1, changes[2]);
+        assert!(changes[2] <= 3.8e-3, "{} patches: {:e}", n + 1, changes[2]);
     }
 }

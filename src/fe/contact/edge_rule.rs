@@ -90,7 +90,7 @@ impl EdgeRule {
 /// Current height over width of the surface element between face nodes `i` and `j`
 /// (neighbours): the mean of its two vertical edges' heights (face node to the node above)
 /// over `|x_j − x_i|`; 0 for a degenerate width.
-fn element_aspect(model: &Model, st: &State, i: usize, j: usize) -> f64 {
+pub(crate) fn element_aspect(model: &Model, st: &State, i: usize, j: usize) -> f64 {
     let mesh = &model.mesh;
     let height = |c: usize| st.x[mesh.id(c, 1)][1] - st.x[mesh.id(c, 0)][1];
     let width = (st.x[mesh.id(j, 0)][0] - st.x[mesh.id(i, 0)][0]).abs();
@@ -101,7 +101,7 @@ fn element_aspect(model: &Model, st: &State, i: usize, j: usize) -> f64 {
     }
 }
 
-/// Bisections of [`periodic_gap_fit`]: `2⁻⁶⁰` of an interval shorter than λ/2
+/// Bisections of [`invert_decreasing`]: `2⁻⁶⁰` of an interval shorter than λ/2
 /// (< 4.4·10⁻¹⁹ λ) is below one ulp of any `x ≥ 2⁻⁹ λ`: the bisection ends at round-off.
 const GAP_FIT_BISECTIONS: usize = 60;
 
@@ -181,19 +181,26 @@ fn periodic_gap_shape(x: f64, a: f64) -> f64 {
 }
 
 /// The `a ∈ [lo, hi]` with `G(x₁; a)/G(x₂; a) = ratio` ([`periodic_gap_shape`]; the
-/// ratio decreases with `a`), clamped to the interval; bisection.
+/// ratio decreases with `a`), clamped to the interval ([`invert_decreasing`]).
 fn periodic_gap_fit(x1: f64, x2: f64, ratio: f64, lo: f64, hi: f64) -> f64 {
     let r = |a: f64| periodic_gap_shape(x1, a) / periodic_gap_shape(x2, a);
-    if r(lo) <= ratio {
+    invert_decreasing(r, ratio, lo, hi)
+}
+
+/// The `v ∈ [lo, hi]` at which the decreasing function `r` takes the value `target`, by
+/// bisection ([`GAP_FIT_BISECTIONS`]); `lo` where `r(lo) ≤ target`, `hi` where `r(hi) ≥ target`.
+/// The gap fits of the edges invert a ratio of gap shapes with it.
+pub(crate) fn invert_decreasing(r: impl Fn(f64) -> f64, target: f64, lo: f64, hi: f64) -> f64 {
+    if r(lo) <= target {
         return lo;
     }
-    if r(hi) >= ratio {
+    if r(hi) >= target {
         return hi;
     }
     let (mut l, mut h) = (lo, hi);
     for _ in 0..GAP_FIT_BISECTIONS {
         let m = 0.5 * (l + h);
-        if r(m) > ratio {
+        if r(m) > target {
             l = m;
         } else {
             h = m;

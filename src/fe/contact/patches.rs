@@ -5,7 +5,10 @@
 //! `multiplier_rtol` times the largest, as [`crate::fe::contact::edge_rule::loaded_edge_node`] reads it),
 //! except the node of an event, which touches with zero force by construction (its force is
 //! the remainder of the event's gap tolerance, far above `multiplier_rtol`).
-//! A run of loaded nodes `i₀ … i₁` (face order, increasing `X`) is one patch:
+//! For a profile with finer harmonics the patches and their edges are those of
+//! [`crate::fe::contact::patch_edge`] (each edge placed between its own events, openings that close
+//! after a merge, young patches by their gaps). For a single sinusoid, whose points are its one
+//! edge's own events, a run of loaded nodes `i₀ … i₁` (face order, increasing `X`) is one patch:
 //! * its right edge lies in `[x_{i₁}, x_{i₁+1}]` and its left edge in `[x_{i₀−1}, x_{i₀}]`
 //!   (current positions), each at the edge rule's fraction of the element measured from the
 //!   loaded node ([`crate::fe::EdgeRule::fraction`]; a rule that fits gaps places the right edge of the
@@ -20,6 +23,7 @@
 //! patch `[0, a]` of a sinusoid.
 
 use crate::fe::contact::edge_rule::edge_position;
+use crate::fe::contact::patch_edge::profile_patches;
 use crate::fe::model::{Model, State};
 use crate::fe::SolveOptions;
 
@@ -45,6 +49,9 @@ pub(crate) fn contact_patches(
     let last = b.len() - 1;
     let x = |i: usize| st.x[b[i]][0];
     let phi = |loaded: usize, free: usize| rule.fraction(model, st, loaded, free);
+    if !model.indenter.profile.is_sinusoid() {
+        return profile_patches(model, st, rule, (&lam, &loaded), event, runs(&loaded));
+    }
     let mut patches = Vec::new();
     for [i0, i1] in runs(&loaded) {
         let start = if i0 == 0 {

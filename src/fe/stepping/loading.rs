@@ -11,7 +11,9 @@
 use serde::{Deserialize, Serialize};
 use std::ops::ControlFlow;
 
-use crate::fe::contact::measure::{deformed_state, measure, EdgeAt, Measured};
+use crate::fe::contact::measure::{
+    deformed_state, measure, measure_between_events, EdgeAt, Measured,
+};
 use crate::fe::error::{CurveFailure, SolveError};
 use crate::fe::model::{Model, State};
 use crate::fe::newton::active_set::{equilibrate, Hold};
@@ -22,7 +24,7 @@ use crate::fe::stepping::event_search::{
 use crate::fe::stepping::node_events::{
     activate_touching_anywhere, earliest_touchdown, passed_touchdowns,
 };
-use crate::fe::stepping::predictor::tangent_at;
+use crate::fe::stepping::predictor::{displacement_step, tangent_at};
 use crate::fe::stepping::pressure_target::{land_on_pressure, Overshoot, PRESSURE_TARGET_RTOL};
 use crate::fe::stepping::release_events::first_release;
 use crate::fe::stepping::step_state::Converged;
@@ -120,6 +122,32 @@ impl LoadPath {
         self.released = released;
     }
 
+    /// Shows the converged `st` and its point to `on_step`, then moves on to it ([`Self::advance`]
+    /// with `(extrapolated, released)`); `on_step`'s `Break` is [`SolveError::Stopped`], after the
+    /// move.
+    pub(crate) fn record(
+        &mut self,
+        model: &Model,
+        st: State,
+        measured: Measured,
+        (extrapolated, released): (Option<f64>, Option<usize>),
+        on_step: &mut dyn FnMut(&CurvePoint, Converged<'_>) -> ControlFlow<()>,
+    ) -> Result<(), SolveError> {
+        let at = Converged {
+            model,
+            state: &st,
+            grad: &measured.grad,
+        };
+        let flow = on_step(&measured.point, at);
+        self.advance(st, measured, extrapolated, released);
+        match flow {
+            ControlFlow::Break(()) => Err(SolveError::Stopped {
+                points: self.points.len(),
+            }),
+            ControlFlow::Continue(()) => Ok(()),
+        }
+    }
+
     /// The failure `error` with the points converged so far.
     pub(crate) fn fail(self, error: SolveError) -> Box<CurveFailure> {
         Box::new(CurveFailure {
@@ -191,7 +219,14 @@ pub(crate) fn loading_branch(
             return Err(path.fail(error));
         }
         let Some((k, tangent)) = next_event_node(model, asm, opts, &mut path, node_events) else {
-            break; // full contact
+            // every node touches: no event is left
+            if opts.until_contact_fraction.is_some() {
+                let closed = load_past_full_contact(model, asm, opts, estar, &mut path, on_step);
+                if let Err(error) = closed {
+                    return Err(path.fail(error));
+                }
+            }
+            break;
         };
         let event = find_event(model, asm, opts, &path, k, tangent, node_events, step)
             .and_then(|found| settle_event(model, asm, opts, &path, found, node_events, step));
@@ -219,17 +254,7 @@ pub(crate) fn loading_branch(
                 Err(error) => return Err(path.fail(error)),
             },
         };
-        let at = Converged {
-            model,
-            state: &st,
-            grad: &measured.grad,
-        };
-        let flow = on_step(&measured.point, at);
-        path.advance(st, measured, extrapolated, released);
-        if flow.is_break() {
-            let error = SolveError::Stopped {
-                points: path.points.len(),
-            };
+        if let Err(error) = path.record(model, st, measured, (extrapolated, released), on_step) {
             return Err(path.fail(error));
         }
         if overshot.is_some() {
@@ -238,6 +263,50 @@ pub(crate) fn loading_branch(
         step += 1;
     }
     targets.check_reached(path)
+}
+
+/// Most slab steps of [`load_past_full_contact`]: with the increment doubled at each, 2³² times
+/// the last event's increment, far beyond any load the layer carries; a safeguard.
+const FULL_CONTACT_STEPS: usize = 32;
+
+/// Every contact-face node touches, so no event is left; but the openings of the continuum
+/// solution that the last touchdowns left close only as their nodes take up load
+/// ([`crate::fe::contact::patch_edge`]), so the contact fraction is still short of 1. Toward a
+/// contact-fraction target not reached yet, the slab goes on by the last event's increment,
+/// doubled at each step, until the fraction reaches it: the first state at or beyond the
+/// target is the curve's last point, as with events. `on_step` sees every converged point; its
+/// `Break` is [`SolveError::Stopped`].
+fn load_past_full_contact(
+    model: &Model,
+    asm: &mut Assembly,
+    opts: &SolveOptions,
+    estar: f64,
+    path: &mut LoadPath,
+    on_step: &mut dyn FnMut(&CurvePoint, Converged<'_>) -> ControlFlow<()>,
+) -> Result<(), SolveError> {
+    let Some(target) = opts.until_contact_fraction else {
+        return Ok(());
+    };
+    let mut increment = path.last_increment.abs();
+    for step in 1..=FULL_CONTACT_STEPS {
+        if path
+            .points
+            .last()
+            .is_some_and(|p| p.contact_fraction >= target)
+            || increment <= 0.0
+        {
+            return Ok(());
+        }
+        let d = path.cur.d + increment;
+        let (mut st, iterations) = displacement_step(model, asm, opts, &path.cur, d, Hold::NONE)
+            .map_err(|f| f.into_error(step, d))?;
+        model.commit_slip(&mut st);
+        let mut measured = measure_between_events(model, asm, &st, estar, opts);
+        measured.point.newton_iterations = iterations;
+        path.record(model, st, measured, (None, None), on_step)?;
+        increment *= 2.0;
+    }
+    Ok(())
 }
 
 /// The three stop targets of the loading branch: the contact width, the mean pressure and the

@@ -8,6 +8,7 @@
 //! (`2a₁/λ`); a table of each model's error against the FE; two contact maps (where the patches
 //! lie as the load grows).
 
+use crate::accuracy::contact_fraction::contact_fraction_error_estimate;
 use crate::fe::{Grading, MeshLevel, SolveOptions};
 use crate::models::superposition::{superposed_contact, SuperpositionError};
 use crate::models::{a_over_lambda_at, CoefficientSet, InverseError, ModelKind, ModelLaw, Reading};
@@ -44,6 +45,13 @@ pub struct TwoScaleScene {
     /// FE contact fractions below this are left out of the relative errors (a relative error of
     /// a vanishing contact says little).
     pub error_from_contact_fraction: f64,
+    /// Elements along the face of the coarser mesh on which each case is solved again for its FE
+    /// error estimate (fewer than `mesh`).
+    pub error_estimate_mesh: usize,
+    /// Order of the FE contact fraction's error in the element size, with which each case's FE
+    /// error is estimated from the same case on `error_estimate_mesh` (`crate::accuracy::contact_fraction`; the order
+    /// observed by mesh convergence: docs/results.md, two-scale surfaces).
+    pub fe_error_order: f64,
     /// The profiles (indices into `profiles`, frictionless) whose contact maps are drawn.
     pub contact_maps: Vec<usize>,
     /// Reading of the paper's Eq. 4 for WNL (default `bracket-sq`).
@@ -117,6 +125,21 @@ impl TwoScaleScene {
             until_contact_fraction: Some(self.until_contact_fraction),
             ..SolveOptions::default()
         }
+    }
+
+    /// The FE cases ([`Self::cases`]) and, after them, each on `error_estimate_mesh`, for the FE
+    /// error estimates.
+    fn all_cases(&self) -> Vec<FeCase> {
+        let cases = self.cases();
+        let coarse: Vec<FeCase> = cases.iter().map(|c| self.coarse_case(c)).collect();
+        cases.into_iter().chain(coarse).collect()
+    }
+
+    /// `case` on `error_estimate_mesh`.
+    fn coarse_case(&self, case: &FeCase) -> FeCase {
+        let mut coarse = case.clone();
+        coarse.options.mesh = MeshLevel::along_face(self.error_estimate_mesh);
+        coarse
     }
 
     /// One FE case per (τ_max, profile), τ_max outer.
@@ -196,7 +219,7 @@ impl TwoScaleScene {
 
 impl Scene for TwoScaleScene {
     fn fe_cases(&self, _opts: &RunOptions) -> Vec<FeCase> {
-        self.cases()
+        self.all_cases()
     }
 
     fn run(&self, ctx: &SceneContext) -> Result<SceneResult> {
@@ -223,8 +246,14 @@ impl Scene for TwoScaleScene {
                 finer_harmonics: profile.finer,
                 ..crate::defaults::layer_problem(profile.aspect_ratio)
             };
-            crate::fe::validate(&problem, &self.options())
-                .map_err(|e| v.invalid(field, None, text.clone(), e.to_string()))?;
+            let coarse = SolveOptions {
+                mesh: MeshLevel::along_face(self.error_estimate_mesh),
+                ..self.options()
+            };
+            for opts in [self.options(), coarse] {
+                crate::fe::validate(&problem, &opts)
+                    .map_err(|e| v.invalid(field, None, text.clone(), e.to_string()))?;
+            }
         }
         let c = self.until_contact_fraction;
         if !(c > 0.0 && c < 1.0) {
@@ -233,6 +262,23 @@ impl Scene for TwoScaleScene {
                 None,
                 c.to_string(),
                 "(0, 1)".into(),
+            ));
+        }
+        let order = self.fe_error_order;
+        if !(order.is_finite() && order > 0.0) {
+            return Err(v.invalid(
+                "two_scale.fe_error_order",
+                None,
+                order.to_string(),
+                "> 0".into(),
+            ));
+        }
+        if self.error_estimate_mesh >= self.mesh {
+            return Err(v.invalid(
+                "two_scale.error_estimate_mesh",
+                None,
+                self.error_estimate_mesh.to_string(),
+                format!("fewer elements than mesh = {}", self.mesh),
             ));
         }
         if self.model_points < 2 {
@@ -272,7 +318,7 @@ impl Scene for TwoScaleScene {
 
 fn run(title: &str, s: &TwoScaleScene, opts: &RunOptions) -> Result<SceneResult> {
     let cases = s.cases();
-    let solved = SolvedCases::solve(cases.clone(), opts)?;
+    let solved = SolvedCases::solve(s.all_cases(), opts)?;
     let mut curves = Table::new(
         "",
         &[
@@ -294,11 +340,13 @@ fn run(title: &str, s: &TwoScaleScene, opts: &RunOptions) -> Result<SceneResult>
             "max_rel_error",
             "rms_rel_error",
             "max_abs_error",
+            "fe_rms_error_estimate",
+            "fe_error_over_model_error",
         ],
     );
     let mut remarks = Remarks::with_footer(vec![format!(
-        "FE: finite strain, neo-Hookean, h/λ = 1, mesh {} elements along the face (peak ratio {}), node events; E* = 1 MPa. Models: docs/replication.md R13.",
-        s.mesh, s.peak_ratio
+        "FE: finite strain, neo-Hookean, h/λ = 1, mesh {} elements along the face (peak ratio {}), node events; E* = 1 MPa; its error estimated against mesh {} at order {}. Models: docs/replication.md R13.",
+        s.mesh, s.peak_ratio, s.error_estimate_mesh, s.fe_error_order
     )]);
     let mut panels = vec![];
     for i in 0..s.profiles.len() {
@@ -339,6 +387,7 @@ fn profile_panel(
         let case = &cases[t * s.profiles.len() + i];
         let fe = solved.outcome(case).expect("solved");
         remarks.stopped_curve(&format!("{name}, τ_max = {tau} MPa"), fe);
+        let fe_error = fe_error_estimate(s, case, solved);
         for p in &fe.points {
             curves.push(vec![
                 name.clone().into(),
@@ -389,7 +438,14 @@ fn profile_panel(
                     line,
                 ));
             }
-            errors.push(error_row(s, &name, tau, model, &profile, fe)?);
+            let mut row = error_row(s, &name, tau, model, &profile, fe)?;
+            let model_error = match row[5] {
+                Cell::Num(e) => Some(e),
+                _ => None,
+            };
+            row.push(fe_error.into());
+            row.push(fe_error.zip(model_error).map(|(f, m)| f / m).into());
+            errors.push(row);
         }
     }
     let x_range = padded_range(series.iter().flat_map(|l| l.points.iter().map(|p| p.0)));
@@ -404,6 +460,27 @@ fn profile_panel(
         legend: Some(LegendPosition::LowerRight),
         log_scale: (false, false),
     })
+}
+
+/// The estimate of the FE curve's relative error (root mean square over its points with a
+/// contact fraction of at least `error_from_contact_fraction`,
+/// [`contact_fraction_error_estimate`]) from the same case on `error_estimate_mesh`, over the
+/// load range both reach (a coarse curve may stop short); `None` when the curve is incomplete or
+/// they share no point.
+fn fe_error_estimate(s: &TwoScaleScene, case: &FeCase, solved: &SolvedCases) -> Option<f64> {
+    let ratio = s.mesh as f64 / s.error_estimate_mesh as f64;
+    let fine = solved.outcome(case)?;
+    let coarse = solved.outcome(&s.coarse_case(case))?;
+    if fine.failure.is_some() {
+        return None;
+    }
+    contact_fraction_error_estimate(
+        &fine.points,
+        &coarse.points,
+        ratio,
+        s.fe_error_order,
+        s.error_from_contact_fraction,
+    )
 }
 
 /// The errors of `model` against the FE curve at its points with a contact fraction of at
