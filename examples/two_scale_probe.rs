@@ -4,7 +4,8 @@
 //! Env: PROFILE (`1:0.1,8:0.05`), MESHES (`48,96`), KIN (`linear`|`finite`), TAU (MPa, 0),
 //! UNTIL (contact fraction, 0.9), BEM_N (points per wavelength, 16384), OUT (folder for
 //! `mN.csv`, optional). Prints the relative RMS / mean / max error over points with contact
-//! fraction ≥ 0.05.
+//! fraction ≥ 0.05. Diagnostics: BEM_AT (comma-separated p̄/E*: only the BEM's fraction and
+//! patches there), DIAG (`lo,hi`: each FE point's patches in that p̄/E* range beside the BEM's).
 use std::ops::ControlFlow;
 use std::time::Instant;
 use wavy::fe::*;

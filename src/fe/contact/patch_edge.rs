@@ -108,11 +108,11 @@ pub(crate) fn patch_edge(
         }
         _ => {
             let gaps = model.gaps(st);
-            let next = beyond_j;
             let most = (reach - x(i)).abs();
-            let half_width = if next != i && gaps[j] > 0.0 && gaps[next] > gaps[j] {
-                let (u1, u2) = ((x(j) - x(i)).abs(), (x(next) - x(i)).abs());
-                hertz_half_width(u1, u2, gaps[j] / gaps[next], most)
+            let (g1, g2) = (gaps[j], gaps[beyond_j]);
+            let half_width = if beyond_j != i && g1 > 0.0 && g2 > g1 {
+                let (u1, u2) = ((x(j) - x(i)).abs(), (x(beyond_j) - x(i)).abs());
+                hertz_half_width(u1, u2, g1 / g2, most)
             } else {
                 0.5 * most
             };

@@ -45,13 +45,13 @@ pub(crate) fn contact_patches(
         .enumerate()
         .map(|(i, &l)| scale > 0.0 && l > opts.multiplier_rtol * scale && event != Some(i))
         .collect();
+    if !model.indenter.profile.is_sinusoid() {
+        return profile_patches(model, st, rule, (&lam, &loaded), event, runs(&loaded));
+    }
     let b = &model.mesh.bottom;
     let last = b.len() - 1;
     let x = |i: usize| st.x[b[i]][0];
     let phi = |loaded: usize, free: usize| rule.fraction(model, st, loaded, free);
-    if !model.indenter.profile.is_sinusoid() {
-        return profile_patches(model, st, rule, (&lam, &loaded), event, runs(&loaded));
-    }
     let mut patches = Vec::new();
     for [i0, i1] in runs(&loaded) {
         let start = if i0 == 0 {
