@@ -26,6 +26,36 @@
 
 use super::BemError;
 
+/// The elastic body a profile is pressed on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ElasticBody {
+    /// The half-plane: compliance `2/(E* q)`.
+    HalfPlane,
+    /// A layer bonded to a rigid base: compliance `S(qh, ν) · 2/(E* q)` ([`layer_compliance`]).
+    Layer {
+        /// Thickness `h/λ` (finite, > 0).
+        thickness: f64,
+        /// Poisson ratio `ν` (`−1 < ν ≤ ½`).
+        poisson: f64,
+    },
+}
+
+impl ElasticBody {
+    /// Its compliance over the half-plane's at the wavenumber `q` (1/λ): 1 for the half-plane,
+    /// `S(qh, ν)` for a layer ([`layer_to_half_plane_ratio`]).
+    pub fn over_half_plane(self, q: f64) -> Result<f64, BemError> {
+        match self {
+            ElasticBody::HalfPlane => {
+                check_wavenumber(q)?;
+                Ok(1.0)
+            }
+            ElasticBody::Layer { thickness, poisson } => {
+                layer_to_half_plane_ratio(q, thickness, poisson)
+            }
+        }
+    }
+}
+
 /// The half-plane's compliance `2/(E* q)` (units λ/E*, `q` in 1/λ, finite and `> 0`).
 pub fn half_plane_compliance(q: f64) -> Result<f64, BemError> {
     check_wavenumber(q)?;

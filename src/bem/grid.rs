@@ -1,16 +1,18 @@
-//! The half-plane's compliance on the periodic grid: displacement from pressure by FFT.
+//! The elastic body's compliance on the periodic grid: displacement from pressure by FFT.
 
 use std::sync::Arc;
 
 use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 
-use super::compliance::half_plane;
+use super::compliance::{half_plane, ElasticBody};
+use super::BemError;
 
 /// `u = K p` on `N` equally spaced points of one wavelength: each discrete Fourier harmonic of
-/// index `k` (wavenumber `q = 2π min(k, N − k)`, λ = 1) of the pressure is scaled by the
-/// half-plane's compliance `2/(E* q)`; the mean (`k = 0`) is dropped, so `u` has zero mean and
-/// the rigid approach stays a separate unknown. Units: `p` over E*, `u` over λ.
+/// index `k` (wavenumber `q = 2π min(k, N − k)`, λ = 1) of the pressure is scaled by the body's
+/// compliance (the half-plane's `2/(E* q)`, a layer's `S(qh, ν)` times that); the mean (`k = 0`)
+/// is dropped, so `u` has zero mean and the rigid approach stays a separate unknown. Units: `p`
+/// over E*, `u` over λ.
 pub(super) struct GridCompliance {
     forward: Arc<dyn Fft<f64>>,
     inverse: Arc<dyn Fft<f64>>,
@@ -21,27 +23,36 @@ pub(super) struct GridCompliance {
 }
 
 impl GridCompliance {
-    /// The operator for `n` points (`n ≥ 2`).
+    /// The half-plane's operator for `n` points (`n ≥ 2`).
+    #[cfg(test)]
     pub(super) fn new(n: usize) -> Self {
+        Self::on(n, ElasticBody::HalfPlane).expect("the half-plane's compliance")
+    }
+
+    /// The operator of `body` for `n` points (`n ≥ 2`).
+    pub(super) fn on(n: usize, body: ElasticBody) -> Result<Self, BemError> {
         let mut planner = FftPlanner::new();
         let forward = planner.plan_fft_forward(n);
         let inverse = planner.plan_fft_inverse(n);
         let weights = (0..n)
             .map(|k| match k.min(n - k) {
-                0 => 0.0,
-                m => half_plane(std::f64::consts::TAU * m as f64) / n as f64,
+                0 => Ok(0.0),
+                m => {
+                    let q = std::f64::consts::TAU * m as f64;
+                    Ok(body.over_half_plane(q)? * half_plane(q) / n as f64)
+                }
             })
-            .collect();
+            .collect::<Result<Vec<f64>, BemError>>()?;
         let scratch_len = forward
             .get_inplace_scratch_len()
             .max(inverse.get_inplace_scratch_len());
-        Self {
+        Ok(Self {
             forward,
             inverse,
             weights,
             buffer: vec![Complex::default(); n],
             scratch: vec![Complex::default(); scratch_len],
-        }
+        })
     }
 
     /// `K`'s diagonal: the displacement at a point per unit pressure there (all weights summed).

@@ -1,7 +1,8 @@
 //! A periodic FFT boundary-element reference solver: a rigid, even, λ-periodic profile
-//! ([`Profile`]) pressed without friction onto a linear elastic half-plane (plane strain) under
-//! a given mean pressure. Independent of the finite-element solver ([`crate::fe`]): small strain,
-//! linear elasticity, the half-plane's exact Fourier compliance.
+//! ([`Profile`]) pressed without friction onto a linear elastic half-plane (plane strain), or a
+//! layer bonded to a rigid base ([`ElasticBody`], [`solve_on`]: the finite-element model's body),
+//! under a given mean pressure. Independent of the finite-element solver ([`crate::fe`]): small
+//! strain, linear elasticity, the body's exact Fourier compliance.
 //!
 //! Units: lengths over λ, pressures over E* (the plane-strain modulus `E/(1 − ν²)`).
 //!
@@ -47,6 +48,7 @@ mod solver_tests;
 
 pub use compliance::{
     half_plane_compliance, layer_compliance, layer_compliance_deficit, layer_to_half_plane_ratio,
+    ElasticBody,
 };
 
 use crate::profile::{Profile, ProfileError};
@@ -126,18 +128,31 @@ pub struct HalfSpaceContact {
     pub approach_over_lambda: f64,
 }
 
-/// The mean pressure over E* at which the profile is flattened completely (module doc):
-/// `max_x[−Σ_k π AR_k cos(2π n_k x)]`, found by sampling 64 points per shortest wavelength and
-/// refining the best by golden-section search (to rounding).
+/// The mean pressure over E* at which the profile is flattened completely on the half-plane
+/// (module doc): `max_x[−Σ_k π AR_k cos(2π n_k x)]`, found by sampling 64 points per shortest
+/// wavelength and refining the best by golden-section search (to rounding).
 pub fn full_contact_pressure(profile: &Profile) -> f64 {
+    full_contact_pressure_on(profile, ElasticBody::HalfPlane).expect("the half-plane's compliance")
+}
+
+/// [`full_contact_pressure`] on `body`: in full contact each harmonic's pressure is its
+/// displacement over the body's compliance, `π AR_k / S_k` for a layer
+/// (`S_k = S(2π n_k h, ν)`), so the full-contact pressure is `max_x[−Σ_k π AR_k cos(2π n_k x)/S_k]`.
+pub fn full_contact_pressure_on(profile: &Profile, body: ElasticBody) -> Result<f64, BemError> {
+    let weights = profile
+        .harmonics()
+        .map(|h| {
+            let q = std::f64::consts::TAU * h.order as f64;
+            Ok((
+                h,
+                std::f64::consts::PI * h.aspect_ratio / body.over_half_plane(q)?,
+            ))
+        })
+        .collect::<Result<Vec<_>, BemError>>()?;
     let f = |x: f64| -> f64 {
-        -profile
-            .harmonics()
-            .map(|h| {
-                std::f64::consts::PI
-                    * h.aspect_ratio
-                    * (std::f64::consts::TAU * h.order as f64 * x).cos()
-            })
+        -weights
+            .iter()
+            .map(|(h, w)| w * (std::f64::consts::TAU * h.order as f64 * x).cos())
             .sum::<f64>()
     };
     let samples = 64 * profile.max_order() as usize;
@@ -157,7 +172,7 @@ pub fn full_contact_pressure(profile: &Profile) -> f64 {
             lo = a;
         }
     }
-    f(best).max(f(0.5 * (lo + hi)))
+    Ok(f(best).max(f(0.5 * (lo + hi))))
 }
 
 /// The least grid for a profile: 16 points on the shortest harmonic's wavelength, and 64 in all.
@@ -184,7 +199,25 @@ pub fn solve(
     points_per_wavelength: usize,
     tol: f64,
 ) -> Result<HalfSpaceContact, BemError> {
-    let solution = solve_grid(profile, p_over_estar, points_per_wavelength, tol)?;
+    solve_on(
+        profile,
+        ElasticBody::HalfPlane,
+        p_over_estar,
+        points_per_wavelength,
+        tol,
+    )
+}
+
+/// [`solve`] on `body`: the half-plane, or a layer bonded to a rigid base (its Fourier
+/// compliance, [`layer_compliance`]), the finite-element model's body in the linear limit.
+pub fn solve_on(
+    profile: &Profile,
+    body: ElasticBody,
+    p_over_estar: f64,
+    points_per_wavelength: usize,
+    tol: f64,
+) -> Result<HalfSpaceContact, BemError> {
+    let solution = solve_grid(profile, body, p_over_estar, points_per_wavelength, tol)?;
     let patches = edges::patches(&solution.pressure, &solution.gap);
     let contact_fraction = 2.0 * patches.iter().map(|[a, b]| b - a).sum::<f64>();
     Ok(HalfSpaceContact {
@@ -200,6 +233,7 @@ pub fn solve(
 /// The checks of [`solve`] and its grid solution.
 fn solve_grid(
     profile: &Profile,
+    body: ElasticBody,
     p_over_estar: f64,
     n: usize,
     tol: f64,
@@ -231,7 +265,7 @@ fn solve_grid(
             ),
         });
     }
-    let full_contact = full_contact_pressure(&profile);
+    let full_contact = full_contact_pressure_on(&profile, body)?;
     if p_over_estar >= full_contact {
         return Err(BemError::FullContact {
             p_over_estar,
@@ -239,7 +273,7 @@ fn solve_grid(
         });
     }
     let s: Vec<f64> = (0..n).map(|i| -profile.y(i as f64 / n as f64)).collect();
-    let mut k_op = grid::GridCompliance::new(n);
+    let mut k_op = grid::GridCompliance::on(n, body)?;
     let gap_tol = tol * profile.amplitude_sum();
     polonsky_keer::solve(&s, p_over_estar, &mut k_op, gap_tol, max_iterations(n)).map_err(
         |stalled| BemError::NoConvergence {

@@ -67,7 +67,7 @@ pub use curve::{
     LoadDirection, SolveWork,
 };
 pub use error::{CurveFailure, SolveError};
-pub use model::material::estar_over_g;
+pub use model::material::{estar_over_g, poisson_ratio};
 pub use model::mesh::{Grading, MeshLevel, MeshLevelParseError};
 pub use stepping::loading::Stepping;
 pub use stepping::step_state::StepState;

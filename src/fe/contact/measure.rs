@@ -4,8 +4,9 @@
 //! deformed state with the contact tractions.
 
 use crate::fe::contact::edge_rule::{edge_position, loaded_edge_node};
+use crate::fe::contact::patch_edge::TravellingEdge;
 use crate::fe::contact::patches::{contact_fraction, contact_patches};
-use crate::fe::contact::stick_zone::{stick_nodes, stick_zone};
+use crate::fe::contact::stick_zone::{stick_nodes, stick_runs, stick_zone};
 use crate::fe::model::{Model, State};
 use crate::fe::newton::assembly::Assembly;
 use crate::fe::{CurvePoint, DeformedState, SolveOptions};
@@ -40,6 +41,10 @@ pub(crate) struct Measured {
     pub(crate) grad: Vec<f64>,
     /// Its contact patches ([`contact_patches`]), which the point counts and sums.
     pub(crate) patches: Vec<[f64; 2]>,
+    /// Those of a profile's patch edges that travel between their own events.
+    pub(crate) travelling: Vec<TravellingEdge>,
+    /// Its stick intervals before they are cut to the patches ([`stick_runs`]).
+    pub(crate) stick_runs: Vec<[f64; 2]>,
 }
 
 /// The point of a converged state with its contact half-width where `edge` says, its internal
@@ -61,8 +66,9 @@ pub(crate) fn measure(
         EdgeAt::Node(k) => Some(k),
         EdgeAt::OutermostPatch(event) => event,
     };
-    let patches = contact_patches(model, st, &f.grad, opts, event);
-    let stick = stick_zone(model, st, &patches);
+    let (patches, travelling) = contact_patches(model, st, &f.grad, opts, event);
+    let stick_runs = stick_runs(model, st);
+    let stick = stick_zone(&stick_runs, &patches, peak_x(model, st));
     let a_over_lambda = match edge {
         EdgeAt::Node(k) => edge_position(model, st, k, opts.edge_rule),
         EdgeAt::OutermostPatch(_) => patches.last().map_or(0.0, |p| p[1]),
@@ -82,7 +88,14 @@ pub(crate) fn measure(
         },
         grad: f.grad,
         patches,
+        travelling,
+        stick_runs,
     }
+}
+
+/// The current `x` of the peak node (units of λ).
+pub(crate) fn peak_x(model: &Model, st: &State) -> f64 {
+    st.x[model.mesh.bottom[0]][0]
 }
 
 /// [`measure`] for a converged state that is not an edge event: the edge in the last loaded

@@ -19,8 +19,10 @@
 //!   continuum solution is still open (both its edges short of `x_j`, each by about the edge
 //!   rule's `1 − φ` of an element or more), and it closes as `j` takes up load: the two edges go
 //!   on toward `x_j` by the same progress law, now of `f_j` over each loaded neighbour, and the
-//!   patches are one when they pass `x_j` ([`opening_around`]). The event edges of such an
-//!   opening follow the progress law too.
+//!   patches are one when they pass `x_j` ([`opening_around`]). Where several nodes of the
+//!   opening touched together, it closes around the least loaded of them only (a node that a
+//!   neighbour outweighs is inside a patch). The event edges of such an opening follow the
+//!   progress law too.
 //! * **Births.** A patch of at most [`YOUNG_PATCH_NODES`] loaded nodes is placed as a whole: the
 //!   local contact `[c − b, c + b]` of a parabolic crest (Hertz) whose gap, `∝ ½[u √(u² − b²) −
 //!   b² ln((u + √(u² − b²))/b)]` at the distance `u` from `c`, has the ratios of the gaps of the
@@ -68,7 +70,7 @@ fn edge_progress(rho: f64, r: f64) -> f64 {
 
 /// The contact-face neighbour of node `i` one step toward `toward` (a neighbour of `i`), across a
 /// symmetry line when `toward` lies on it: the mirror image of the node beyond it.
-fn step_beyond(i: usize, toward: usize, last: usize) -> usize {
+pub(crate) fn step_beyond(i: usize, toward: usize, last: usize) -> usize {
     match (toward > i, toward) {
         (true, t) if t == last => i,
         (true, t) => t + 1,
@@ -77,10 +79,39 @@ fn step_beyond(i: usize, toward: usize, last: usize) -> usize {
     }
 }
 
-/// The current `x` (units of λ) of the edge of a patch whose last loaded node, face order, is `i`
-/// and whose free neighbour beyond it is `j` (`i ± 1`), given the vertical contact multipliers
-/// `lam` and which nodes are `loaded` (module documentation).
-pub(crate) fn patch_edge(
+/// A patch edge caught between its own events: its last loaded node `i` touched after its inner
+/// neighbour `m`, and its free neighbour `j` has not touched yet. It lies between `from`
+/// (`E₀`, where it was when `i` touched) and `reach` (`E₁`, where it will be when `j`
+/// touches), both of the edge rule at the state's current positions (units of λ), at the
+/// progress `t` the force ratio reads ([`edge_progress`]) until the whole loading curve is
+/// known ([`crate::fe::contact::edge_tracks`] places it by the load between those touchdowns).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct TravellingEdge {
+    /// Index of its patch in the state's patches.
+    pub(crate) patch: usize,
+    /// Which end of the patch it is: 0 its start (smaller `x`), 1 its end.
+    pub(crate) end: usize,
+    /// Its last loaded node `i` (face order).
+    pub(crate) node: usize,
+    /// The free node `j` beyond it.
+    pub(crate) free: usize,
+    /// `E₀` (units of λ).
+    pub(crate) from: f64,
+    /// `E₁` (units of λ).
+    pub(crate) reach: f64,
+}
+
+/// A placed patch edge: its current `x` (units of λ) and, when it is travelling between its own
+/// events, its `E₀` and `E₁` ([`TravellingEdge`]).
+struct PlacedEdge {
+    x: f64,
+    between: Option<[f64; 2]>,
+}
+
+/// The edge of a patch whose last loaded node, face order, is `i` and whose free neighbour beyond
+/// it is `j` (`i ± 1`), given the vertical contact multipliers `lam` and which nodes are
+/// `loaded` (module documentation).
+fn patch_edge(
     model: &Model,
     st: &State,
     rule: EdgeRule,
@@ -88,7 +119,8 @@ pub(crate) fn patch_edge(
     event: Option<usize>,
     i: usize,
     j: usize,
-) -> f64 {
+) -> PlacedEdge {
+    let at = |x: f64| PlacedEdge { x, between: None };
     let b = &model.mesh.bottom;
     let last = b.len() - 1;
     let x = |k: usize| st.x[b[k]][0];
@@ -96,7 +128,7 @@ pub(crate) fn patch_edge(
     let reach = x(i) + rule.fraction(model, st, i, j) * (x(j) - x(i));
     // the event's own edge is the edge rule's, unless the event closes an opening
     if event == Some(j) && !loaded[beyond_j] {
-        return reach;
+        return at(reach);
     }
     let inner = step_beyond(j, i, last);
     let inner = (inner != j).then_some(inner);
@@ -104,7 +136,10 @@ pub(crate) fn patch_edge(
         Some(m) if loaded[m] && lam[m] > 0.0 => {
             let from = x(m) + rule.fraction(model, st, m, i) * (x(i) - x(m));
             let r = 0.5 * (element_aspect(model, st, m, i) + element_aspect(model, st, i, j));
-            from + edge_progress(lam[i] / lam[m], r) * (reach - from)
+            PlacedEdge {
+                x: from + edge_progress(lam[i] / lam[m], r) * (reach - from),
+                between: Some([from, reach]),
+            }
         }
         _ => {
             let gaps = model.gaps(st);
@@ -116,7 +151,7 @@ pub(crate) fn patch_edge(
             } else {
                 0.5 * most
             };
-            x(i) + half_width * (reach - x(i)).signum()
+            at(x(i) + half_width * (reach - x(i)).signum())
         }
     }
 }
@@ -124,7 +159,8 @@ pub(crate) fn patch_edge(
 /// The contact patches of a profile's state in `[0, ½]` (as
 /// [`crate::fe::contact::patches::contact_patches`] gives them): each of the `runs` of `loaded`
 /// nodes `[i₀, i₁]` (in order), its outer edges placed by [`patch_edge`], split where a node inside
-/// it still has an opening around it ([`opening_around`]).
+/// it still has an opening around it ([`opening_around`]); with the edges among them that travel
+/// between their own events.
 pub(crate) fn profile_patches(
     model: &Model,
     st: &State,
@@ -132,7 +168,7 @@ pub(crate) fn profile_patches(
     (lam, loaded): (&[f64], &[bool]),
     event: Option<usize>,
     mut runs: Vec<[usize; 2]>,
-) -> Vec<[f64; 2]> {
+) -> (Vec<[f64; 2]>, Vec<TravellingEdge>) {
     let b = &model.mesh.bottom;
     let last = b.len() - 1;
     let x = |k: usize| st.x[b[k]][0];
@@ -163,6 +199,20 @@ pub(crate) fn profile_patches(
         runs.insert(at, [k, k]);
     }
     let mut patches = Vec::new();
+    let mut travelling = Vec::new();
+    let mut placed = |edge: PlacedEdge, patch: usize, end: usize, node: usize, free: usize| {
+        if let Some([from, reach]) = edge.between {
+            travelling.push(TravellingEdge {
+                patch,
+                end,
+                node,
+                free,
+                from,
+                reach,
+            });
+        }
+        edge.x
+    };
     for [i0, i1] in runs {
         if born == Some(i0) {
             patches.push(young(i0, i1).unwrap_or([x(i0), x(i0)]));
@@ -177,9 +227,14 @@ pub(crate) fn profile_patches(
         let mut start = match i0 {
             0 if i1 > 0 => opening(0, 1, 1).map_or(x(0), |o| o[1]),
             0 => x(0),
-            _ => edge(i0, i0 - 1),
+            _ => placed(edge(i0, i0 - 1), patches.len(), 0, i0, i0 - 1),
         };
         for j in i0 + 1..i1 {
+            // an opening closes around the least loaded node of its stretch: a node that a
+            // neighbour outweighs from neither side is inside a patch
+            if lam[j] > lam[j - 1] || lam[j] > lam[j + 1] {
+                continue;
+            }
             if let Some([l, r]) = opening(j, j - 1, j + 1) {
                 patches.push([start, l]);
                 start = r;
@@ -190,11 +245,14 @@ pub(crate) fn profile_patches(
                 opening(last, last - 1, last - 1).map_or(x(last), |o| o[0])
             }
             i if i == last => x(last),
-            _ => edge(i1, i1 + 1),
+            _ => {
+                let edge = edge(i1, i1 + 1);
+                placed(edge, patches.len(), 1, i1, i1 + 1)
+            }
         };
         patches.push([start, end]);
     }
-    patches
+    (patches, travelling)
 }
 
 /// A young patch: the local (Hertz) contact `[c − b, c + b]` whose gap shape

@@ -23,20 +23,21 @@
 //! patch `[0, a]` of a sinusoid.
 
 use crate::fe::contact::edge_rule::edge_position;
-use crate::fe::contact::patch_edge::profile_patches;
+use crate::fe::contact::patch_edge::{profile_patches, TravellingEdge};
 use crate::fe::model::{Model, State};
 use crate::fe::SolveOptions;
 
 /// The contact patches of `st` (with internal forces `grad`) in `[0, ½]`, in order of `x`,
-/// each `[start, end]` (units of λ, current positions); `event` is the node of the event that
-/// produced `st`, if any.
+/// each `[start, end]` (units of λ, current positions), and those of a profile's edges that
+/// travel between their own events ([`TravellingEdge`]; none for a sinusoid); `event` is the
+/// node of the event that produced `st`, if any.
 pub(crate) fn contact_patches(
     model: &Model,
     st: &State,
     grad: &[f64],
     opts: &SolveOptions,
     event: Option<usize>,
-) -> Vec<[f64; 2]> {
+) -> (Vec<[f64; 2]>, Vec<TravellingEdge>) {
     let rule = opts.edge_rule;
     let lam = model.multipliers(st, grad);
     let scale = lam.iter().fold(0.0_f64, |m, l| m.max(l.abs()));
@@ -68,7 +69,7 @@ pub(crate) fn contact_patches(
         };
         patches.push([start, end]);
     }
-    patches
+    (patches, Vec::new())
 }
 
 /// The maximal runs of `true` in `flags`, as `[first, last]` index pairs in order.

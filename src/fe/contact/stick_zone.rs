@@ -51,9 +51,9 @@ pub(crate) fn stick_nodes(model: &Model, st: &State) -> Vec<bool> {
     stick
 }
 
-/// The stick intervals of `st` in `[0, ½]` (current `x`, in order), cut to the contact
-/// `patches` (`[start, end]` each, in order).
-pub(crate) fn stick_intervals(model: &Model, st: &State, patches: &[[f64; 2]]) -> Vec<[f64; 2]> {
+/// The stick intervals of `st` in `[0, ½]` (current `x`, in order), each from front to front,
+/// before they are cut to the contact patches ([`cut_to_patches`]).
+pub(crate) fn stick_runs(model: &Model, st: &State) -> Vec<[f64; 2]> {
     let Some(law) = model.friction else {
         return Vec::new();
     };
@@ -92,6 +92,16 @@ pub(crate) fn stick_intervals(model: &Model, st: &State, patches: &[[f64; 2]]) -
         } else {
             front(k1, k1 + 1, (k0 < k1).then_some(k1 - 1))
         };
+        intervals.push([start, end]);
+    }
+    intervals
+}
+
+/// The stick `runs` ([`stick_runs`]) cut to the contact `patches` (`[start, end]` each, in
+/// order): the stick intervals.
+pub(crate) fn cut_to_patches(runs: &[[f64; 2]], patches: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let mut intervals = Vec::new();
+    for &[start, end] in runs {
         for p in patches {
             let (s, e) = (start.max(p[0]), end.min(p[1]));
             if e > s {
@@ -102,10 +112,10 @@ pub(crate) fn stick_intervals(model: &Model, st: &State, patches: &[[f64; 2]]) -
     intervals
 }
 
-/// The stick zone of `st` with contact `patches` ([`StickZone`]).
-pub(crate) fn stick_zone(model: &Model, st: &State, patches: &[[f64; 2]]) -> StickZone {
-    let intervals = stick_intervals(model, st, patches);
-    let peak = st.x[model.mesh.bottom[0]][0];
+/// The stick zone of the stick `runs` ([`stick_runs`]) cut to the contact `patches`
+/// ([`StickZone`]); `peak`, the current `x` of the peak node.
+pub(crate) fn stick_zone(runs: &[[f64; 2]], patches: &[[f64; 2]], peak: f64) -> StickZone {
+    let intervals = cut_to_patches(runs, patches);
     StickZone {
         fraction: 2.0 * intervals.iter().map(|i| i[1] - i[0]).sum::<f64>(),
         central_half_width: intervals

@@ -9,11 +9,8 @@
 //! force at the last event enter the next step active.
 
 use serde::{Deserialize, Serialize};
-use std::ops::ControlFlow;
 
-use crate::fe::contact::measure::{
-    deformed_state, measure, measure_between_events, EdgeAt, Measured,
-};
+use crate::fe::contact::measure::{measure, measure_between_events, EdgeAt, Measured};
 use crate::fe::error::{CurveFailure, SolveError};
 use crate::fe::model::{Model, State};
 use crate::fe::newton::active_set::{equilibrate, Hold};
@@ -21,22 +18,14 @@ use crate::fe::newton::assembly::Assembly;
 use crate::fe::stepping::event_search::{
     activate_touching, closing_increment, event_gap_tolerance, next_target, EventSearch,
 };
+use crate::fe::stepping::load_path::{LoadPath, OnStep};
 use crate::fe::stepping::node_events::{
     activate_touching_anywhere, earliest_touchdown, passed_touchdowns,
 };
 use crate::fe::stepping::predictor::{displacement_step, tangent_at};
 use crate::fe::stepping::pressure_target::{land_on_pressure, Overshoot, PRESSURE_TARGET_RTOL};
 use crate::fe::stepping::release_events::first_release;
-use crate::fe::stepping::step_state::Converged;
-use crate::fe::{Curve, CurvePoint, SolveOptions};
-
-/// Bounds of the ratio of actual to tangent-extrapolated displacement increment that scales the
-/// next event's first trial. Safeguard, not tuned: one odd event (a node released and
-/// re-touching) cannot throw the next prediction far off.
-const EVENT_RATIO_MIN: f64 = 0.5;
-
-/// Upper bound of the event ratio ([`EVENT_RATIO_MIN`]).
-const EVENT_RATIO_MAX: f64 = 4.0;
+use crate::fe::{Curve, SolveOptions};
 
 /// How the load steps from one contact event to the next.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -57,125 +46,6 @@ pub enum Stepping {
 /// displacement, so the chain is short; a safeguard.
 const MAX_RETARGETS: usize = 8;
 
-/// What the load stepping carries from one edge event to the next.
-pub(crate) struct LoadPath {
-    /// Converged state of the last event, and of the one before.
-    pub(crate) cur: State,
-    pub(crate) prev: Option<State>,
-    /// Contact half-width `a/λ` of the last event.
-    pub(crate) a: f64,
-    /// Slab-displacement increment of the last event (units of λ; before the first, the
-    /// first trial).
-    pub(crate) last_increment: f64,
-    /// Ratio of the actual to the tangent-extrapolated increment of the last event.
-    pub(crate) event_ratio: f64,
-    /// Points converged so far.
-    pub(crate) points: Vec<CurvePoint>,
-    /// The contact patches of each point.
-    pub(crate) patch_edges: Vec<Vec<[f64; 2]>>,
-    /// Internal forces `∂Π/∂x` of `cur`.
-    pub(crate) grad: Vec<f64>,
-    /// The contact-face node the last event released, if it was a release.
-    pub(crate) released: Option<usize>,
-}
-
-impl LoadPath {
-    /// The undeformed state with the peak node in contact.
-    pub(crate) fn start(model: &Model, opts: &SolveOptions) -> Self {
-        Self {
-            cur: model.initial_state(),
-            prev: None,
-            a: 0.0,
-            last_increment: opts.first_step_over_amplitude * model.indenter.amplitude(),
-            event_ratio: 1.0,
-            points: Vec::new(),
-            patch_edges: Vec::new(),
-            grad: vec![0.0; 2 * model.num_nodes()],
-            released: None,
-        }
-    }
-
-    /// Move on to the converged event `st` with its point, forces and patches; `extrapolated` is
-    /// the increment the load tangent predicted for it; `released`, the node it released if it
-    /// is a release event.
-    pub(crate) fn advance(
-        &mut self,
-        st: State,
-        measured: Measured,
-        extrapolated: Option<f64>,
-        released: Option<usize>,
-    ) {
-        let Measured {
-            point,
-            grad,
-            patches,
-        } = measured;
-        self.a = point.a_over_lambda;
-        self.points.push(point);
-        self.patch_edges.push(patches);
-        self.grad = grad;
-        self.last_increment = st.d - self.cur.d;
-        if let Some(e) = extrapolated {
-            self.event_ratio = (self.last_increment / e).clamp(EVENT_RATIO_MIN, EVENT_RATIO_MAX);
-        }
-        self.prev = Some(std::mem::replace(&mut self.cur, st));
-        self.released = released;
-    }
-
-    /// Shows the converged `st` and its point to `on_step`, then moves on to it ([`Self::advance`]
-    /// with `(extrapolated, released)`); `on_step`'s `Break` is [`SolveError::Stopped`], after the
-    /// move.
-    pub(crate) fn record(
-        &mut self,
-        model: &Model,
-        st: State,
-        measured: Measured,
-        (extrapolated, released): (Option<f64>, Option<usize>),
-        on_step: &mut dyn FnMut(&CurvePoint, Converged<'_>) -> ControlFlow<()>,
-    ) -> Result<(), SolveError> {
-        let at = Converged {
-            model,
-            state: &st,
-            grad: &measured.grad,
-        };
-        let flow = on_step(&measured.point, at);
-        self.advance(st, measured, extrapolated, released);
-        match flow {
-            ControlFlow::Break(()) => Err(SolveError::Stopped {
-                points: self.points.len(),
-            }),
-            ControlFlow::Continue(()) => Ok(()),
-        }
-    }
-
-    /// The failure `error` with the points converged so far.
-    pub(crate) fn fail(self, error: SolveError) -> Box<CurveFailure> {
-        Box::new(CurveFailure {
-            error,
-            points: self.points,
-            unloading: Vec::new(),
-        })
-    }
-
-    /// The curve: the loading points, `unloading`, the last converged state and the work
-    /// done (`asm`).
-    pub(crate) fn finish(
-        self,
-        model: &Model,
-        asm: &Assembly,
-        estar: f64,
-        unloading: Vec<CurvePoint>,
-    ) -> Curve {
-        Curve {
-            final_state: deformed_state(model, &self.cur, &self.grad, estar),
-            points: self.points,
-            patch_edges: self.patch_edges,
-            unloading,
-            work: asm.work(),
-        }
-    }
-}
-
 /// Trace the load curve up to `opts.until_a_over_lambda`, one edge event per point (see
 /// [`crate::fe::stepping::event_search`] for the events, [`crate::fe::contact::edge_rule`] for the contact-edge
 /// location). `on_step` sees every converged point with a view of its state.
@@ -184,7 +54,7 @@ pub(crate) fn trace(
     asm: &mut Assembly,
     opts: &SolveOptions,
     estar: f64,
-    on_step: &mut dyn FnMut(&CurvePoint, Converged<'_>) -> ControlFlow<()>,
+    on_step: &mut OnStep<'_>,
 ) -> Result<Curve, Box<CurveFailure>> {
     let path = loading_branch(model, asm, opts, estar, on_step)?;
     Ok(path.finish(model, asm, estar, Vec::new()))
@@ -200,7 +70,7 @@ pub(crate) fn loading_branch(
     asm: &mut Assembly,
     opts: &SolveOptions,
     estar: f64,
-    on_step: &mut dyn FnMut(&CurvePoint, Converged<'_>) -> ControlFlow<()>,
+    on_step: &mut OnStep<'_>,
 ) -> Result<LoadPath, Box<CurveFailure>> {
     let mut path = LoadPath::start(model, opts);
     let targets = Targets {
@@ -216,14 +86,14 @@ pub(crate) fn loading_branch(
                 steps: opts.max_steps,
                 a_over_lambda: path.a,
             };
-            return Err(path.fail(error));
+            return Err(path.fail(model, error, on_step));
         }
         let Some((k, tangent)) = next_event_node(model, asm, opts, &mut path, node_events) else {
             // every node touches: no event is left
             if opts.until_contact_fraction.is_some() {
                 let closed = load_past_full_contact(model, asm, opts, estar, &mut path, on_step);
                 if let Err(error) = closed {
-                    return Err(path.fail(error));
+                    return Err(path.fail(model, error, on_step));
                 }
             }
             break;
@@ -232,7 +102,7 @@ pub(crate) fn loading_branch(
             .and_then(|found| settle_event(model, asm, opts, &path, found, node_events, step));
         let mut settled = match event {
             Ok(settled) => settled,
-            Err(error) => return Err(path.fail(error)),
+            Err(error) => return Err(path.fail(model, error, on_step)),
         };
         let measured = measure_event(model, asm, opts, estar, &mut settled);
         let SettledEvent {
@@ -251,18 +121,21 @@ pub(crate) fn loading_branch(
                 model, asm, opts, estar, &path, k, st, measured, target, step,
             ) {
                 Ok((st, landed)) => (st, landed, None),
-                Err(error) => return Err(path.fail(error)),
+                Err(error) => return Err(path.fail(model, error, on_step)),
             },
         };
         if let Err(error) = path.record(model, st, measured, (extrapolated, released), on_step) {
-            return Err(path.fail(error));
+            return Err(path.fail(model, error, on_step));
         }
         if overshot.is_some() {
             break; // on the pressure target
         }
         step += 1;
     }
-    targets.check_reached(path)
+    if let Err(error) = path.show_final(model, true, on_step) {
+        return Err(path.fail(model, error, on_step));
+    }
+    targets.check_reached(path, model, on_step)
 }
 
 /// Most slab steps of [`load_past_full_contact`]: with the increment doubled at each, 2³² times
@@ -282,7 +155,7 @@ fn load_past_full_contact(
     opts: &SolveOptions,
     estar: f64,
     path: &mut LoadPath,
-    on_step: &mut dyn FnMut(&CurvePoint, Converged<'_>) -> ControlFlow<()>,
+    on_step: &mut OnStep<'_>,
 ) -> Result<(), SolveError> {
     let Some(target) = opts.until_contact_fraction else {
         return Ok(());
@@ -354,7 +227,12 @@ impl Targets<'_> {
 
     /// The branch as it ended, or the error that says which target it fell short of (full
     /// contact came first).
-    fn check_reached(&self, path: LoadPath) -> Result<LoadPath, Box<CurveFailure>> {
+    fn check_reached(
+        &self,
+        path: LoadPath,
+        model: &Model,
+        on_step: &mut OnStep<'_>,
+    ) -> Result<LoadPath, Box<CurveFailure>> {
         let opts = self.opts;
         if let Some(target) = opts.until_p_over_estar {
             let p_over_estar = path.points.last().map_or(0.0, |p| p.p_over_estar);
@@ -363,7 +241,7 @@ impl Targets<'_> {
                     p_over_estar,
                     target,
                 };
-                return Err(path.fail(error));
+                return Err(path.fail(model, error, on_step));
             }
             if !self.pressure_reached(&path) && path.a >= opts.until_a_over_lambda {
                 let error = SolveError::PressureTargetBeyondLimit {
@@ -371,7 +249,7 @@ impl Targets<'_> {
                     p_over_estar: path.points.last().map_or(0.0, |p| p.p_over_estar),
                     target,
                 };
-                return Err(path.fail(error));
+                return Err(path.fail(model, error, on_step));
             }
         }
         if let Some(target) = opts.until_contact_fraction {
@@ -380,7 +258,7 @@ impl Targets<'_> {
                     contact_fraction: path.points.last().map_or(0.0, |p| p.contact_fraction),
                     target,
                 };
-                return Err(path.fail(error));
+                return Err(path.fail(model, error, on_step));
             }
             return Ok(path);
         }
@@ -389,7 +267,7 @@ impl Targets<'_> {
                 a_over_lambda: path.a,
                 target: opts.until_a_over_lambda,
             };
-            return Err(path.fail(error));
+            return Err(path.fail(model, error, on_step));
         }
         Ok(path)
     }
@@ -408,6 +286,7 @@ fn next_event_node(
 ) -> Option<(usize, Option<Vec<f64>>)> {
     if node_events {
         activate_touching_anywhere(model, &mut path.cur, path.released);
+        path.touching_before_step();
         let tangent = tangent_at(model, asm, opts, &path.cur);
         let k = earliest_touchdown(model, &path.cur, tangent.as_deref())?;
         Some((k, tangent))

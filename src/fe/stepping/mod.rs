@@ -1,7 +1,8 @@
 //! What one load step does: the load path from one contact event to the next.
 //!
 //! [`loading`] steps from one contact-edge event to the next, to a contact width or (with
-//! [`pressure_target`]) to a mean pressure, and [`unloading`] back to zero load;
+//! [`pressure_target`]) to a mean pressure, carrying a [`load_path`] (the last states, the points,
+//! when the step callback sees them), and [`unloading`] back to zero load;
 //! [`event_search`] finds which node touches next and at which slab displacement,
 //! [`node_events`] the same for a contact in several patches (profiles), and
 //! [`release_events`] where a contact node lets go; [`step_control`] holds the one regula falsi
@@ -10,6 +11,7 @@
 //! asks.
 
 pub mod event_search;
+pub mod load_path;
 pub mod loading;
 pub mod node_events;
 pub mod predictor;

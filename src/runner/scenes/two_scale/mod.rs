@@ -8,19 +8,20 @@
 //! (`2a₁/λ`); a table of each model's error against the FE; two contact maps (where the patches
 //! lie as the load grows).
 
-use crate::accuracy::contact_fraction::contact_fraction_error_estimate;
+mod panels;
+
+use panels::{contact_map, profile_panel};
+
 use crate::fe::{Grading, MeshLevel, SolveOptions};
 use crate::models::superposition::{superposed_contact, SuperpositionError};
 use crate::models::{a_over_lambda_at, CoefficientSet, InverseError, ModelKind, ModelLaw, Reading};
-use crate::numfmt::sig_digits;
-use crate::plot::{padded_range, LegendPosition, Panel, Series};
 use crate::profile::Profile;
 use crate::runner::scenes::scene_output::{Layout, Remarks};
 use crate::runner::scenes::{Scene, SceneContext, SceneResult};
-use crate::runner::sweep::fe_cases::{FeCase, FeOutcome, FePhysics, SolvedCases};
+use crate::runner::sweep::fe_cases::{FeCase, FePhysics, SolvedCases};
 use crate::runner::RunOptions;
 use crate::spec::{Bounded, NonNegative, SpecError, Validator};
-use crate::table::{Cell, Table};
+use crate::table::Table;
 use anyhow::Result;
 use plotters::style::RGBColor;
 
@@ -35,6 +36,15 @@ pub struct TwoScaleScene {
     pub tau_max_mpa: Vec<Bounded<NonNegative>>,
     /// Elements along the contact face.
     pub mesh: usize,
+    /// Elements across the layer's thickness per element along the face (the meshes of
+    /// `wavy solve --mesh N` take ½; the depth grows geometrically from one face spacing at the
+    /// face, so fewer layers cost little accuracy: docs/results.md, two-scale surfaces).
+    pub depth_ratio: f64,
+    /// At least this many face elements per wavelength of the finer harmonic: a profile that needs
+    /// more than `mesh` gives them (`error_estimate_mesh` grows with it). 0: `mesh` for every
+    /// profile.
+    #[serde(default)]
+    pub elements_per_small_wavelength: usize,
     /// Face spacing at the valley over that at the peak (1: uniform, the small waves lie
     /// everywhere).
     pub peak_ratio: f64,
@@ -115,9 +125,39 @@ impl TwoScaleScene {
         Profile::from_pairs(&self.profiles[i]).expect("validated")
     }
 
-    fn options(&self) -> SolveOptions {
+    /// The face elements of profile `i`'s FE case: `mesh`, or more where its finer harmonic
+    /// needs `elements_per_small_wavelength` (two wavelengths λ/n per λ, the face spans λ/2).
+    fn mesh_of(&self, i: usize) -> usize {
+        let order = self
+            .profile(i)
+            .finer
+            .iter()
+            .map(|h| h.order)
+            .max()
+            .unwrap_or(1) as usize;
+        self.mesh
+            .max((self.elements_per_small_wavelength * order).div_ceil(2))
+    }
+
+    /// The face elements of profile `i`'s error-estimate case: `error_estimate_mesh`, grown as
+    /// [`Self::mesh_of`] grows `mesh`.
+    fn estimate_mesh_of(&self, i: usize) -> usize {
+        let grown = self.mesh_of(i) as f64 / self.mesh as f64;
+        (self.error_estimate_mesh as f64 * grown).round() as usize
+    }
+
+    /// The mesh of `nx` face elements and `depth_ratio` as many across the thickness.
+    fn mesh_level(&self, nx: usize) -> MeshLevel {
+        MeshLevel::Elements {
+            nx,
+            ny: ((nx as f64 * self.depth_ratio).round() as usize).max(2),
+        }
+    }
+
+    /// The solve options of profile `i`.
+    fn options(&self, i: usize) -> SolveOptions {
         SolveOptions {
-            mesh: MeshLevel::along_face(self.mesh),
+            mesh: self.mesh_level(self.mesh_of(i)),
             grading: Grading {
                 peak_ratio: self.peak_ratio,
                 ..Grading::default()
@@ -131,14 +171,19 @@ impl TwoScaleScene {
     /// error estimates.
     fn all_cases(&self) -> Vec<FeCase> {
         let cases = self.cases();
-        let coarse: Vec<FeCase> = cases.iter().map(|c| self.coarse_case(c)).collect();
+        let n = self.profiles.len();
+        let coarse: Vec<FeCase> = cases
+            .iter()
+            .enumerate()
+            .map(|(c, case)| self.coarse_case(c % n, case))
+            .collect();
         cases.into_iter().chain(coarse).collect()
     }
 
-    /// `case` on `error_estimate_mesh`.
-    fn coarse_case(&self, case: &FeCase) -> FeCase {
+    /// `case`, of profile `i`, on its error-estimate mesh ([`Self::estimate_mesh_of`]).
+    fn coarse_case(&self, i: usize, case: &FeCase) -> FeCase {
         let mut coarse = case.clone();
-        coarse.options.mesh = MeshLevel::along_face(self.error_estimate_mesh);
+        coarse.options.mesh = self.mesh_level(self.estimate_mesh_of(i));
         coarse
     }
 
@@ -152,7 +197,7 @@ impl TwoScaleScene {
                     &FePhysics::default(),
                     &profile,
                     tau,
-                    self.options(),
+                    self.options(i),
                 ));
             }
         }
@@ -229,8 +274,17 @@ impl Scene for TwoScaleScene {
     fn validate(&self, v: &Validator) -> Result<(), SpecError> {
         v.non_empty("two_scale.profiles", self.profiles.len())?;
         v.non_empty("two_scale.tau_max_mpa", self.tau_max_mpa.len())?;
+        let ratio = self.depth_ratio;
+        if !(ratio.is_finite() && ratio > 0.0 && ratio <= 4.0) {
+            return Err(v.invalid(
+                "two_scale.depth_ratio",
+                None,
+                ratio.to_string(),
+                "(0, 4]".into(),
+            ));
+        }
         let field = "two_scale.profiles";
-        for p in &self.profiles {
+        for (i, p) in self.profiles.iter().enumerate() {
             let text = format!("{p:?}");
             let profile = Profile::from_pairs(p)
                 .map_err(|e| v.invalid(field, None, text.clone(), e.to_string()))?;
@@ -247,10 +301,10 @@ impl Scene for TwoScaleScene {
                 ..crate::defaults::layer_problem(profile.aspect_ratio)
             };
             let coarse = SolveOptions {
-                mesh: MeshLevel::along_face(self.error_estimate_mesh),
-                ..self.options()
+                mesh: self.mesh_level(self.estimate_mesh_of(i)),
+                ..self.options(i)
             };
-            for opts in [self.options(), coarse] {
+            for opts in [self.options(i), coarse] {
                 crate::fe::validate(&problem, &opts)
                     .map_err(|e| v.invalid(field, None, text.clone(), e.to_string()))?;
             }
@@ -345,8 +399,16 @@ fn run(title: &str, s: &TwoScaleScene, opts: &RunOptions) -> Result<SceneResult>
         ],
     );
     let mut remarks = Remarks::with_footer(vec![format!(
-        "FE: finite strain, neo-Hookean, h/λ = 1, mesh {} elements along the face (peak ratio {}), node events; E* = 1 MPa; its error estimated against mesh {} at order {}. Models: docs/replication.md R13.",
-        s.mesh, s.peak_ratio, s.error_estimate_mesh, s.fe_error_order
+        "FE: finite strain, neo-Hookean, h/λ = 1, mesh {} elements along the face{} (peak ratio {}), {} across the thickness per face element, node events; E* = 1 MPa; its error estimated against mesh {} at order {}. Models: docs/replication.md R13.",
+        s.mesh,
+        match s.elements_per_small_wavelength {
+            0 => String::new(),
+            e => format!(" or {e} per wavelength of the finer harmonic, whichever is more"),
+        },
+        s.peak_ratio,
+        s.depth_ratio,
+        s.error_estimate_mesh,
+        s.fe_error_order
     )]);
     let mut panels = vec![];
     for i in 0..s.profiles.len() {
@@ -368,185 +430,4 @@ fn run(title: &str, s: &TwoScaleScene, opts: &RunOptions) -> Result<SceneResult>
         font_px: 14,
     };
     Ok(remarks.finish(title, layout, panels, vec![curves, errors]))
-}
-
-/// The panel of profile `i`: its FE curve at each τ_max and each model's curve, whose points go
-/// into the curves table and whose errors against the FE into the errors table.
-fn profile_panel(
-    s: &TwoScaleScene,
-    i: usize,
-    cases: &[FeCase],
-    solved: &SolvedCases,
-    (curves, errors): (&mut Table, &mut Table),
-    remarks: &mut Remarks,
-) -> Result<Panel> {
-    let profile = s.profile(i);
-    let name = profile.to_string();
-    let mut series = vec![];
-    for (t, tau) in s.tau_max_mpa.iter().map(|t| t.get()).enumerate() {
-        let case = &cases[t * s.profiles.len() + i];
-        let fe = solved.outcome(case).expect("solved");
-        remarks.stopped_curve(&format!("{name}, τ_max = {tau} MPa"), fe);
-        let fe_error = fe_error_estimate(s, case, solved);
-        for p in &fe.points {
-            curves.push(vec![
-                name.clone().into(),
-                tau.into(),
-                "fe".into(),
-                p.p_over_estar.into(),
-                p.contact_fraction.into(),
-                Cell::Num(p.patches as f64),
-            ]);
-        }
-        series.push(Series::line(
-            Some(format!("FE, τ_max = {tau} MPa")),
-            FE_COLORS[t % FE_COLORS.len()],
-            2,
-            fe.points
-                .iter()
-                .map(|p| (p.p_over_estar, p.contact_fraction))
-                .collect(),
-        ));
-        let p_max = fe.points.last().map_or(0.0, |p| p.p_over_estar);
-        for model in Model::ALL {
-            let drawn = !model.frictionless() || t == 0;
-            let mut line = vec![];
-            for k in 1..=s.model_points {
-                let p = p_max * k as f64 / s.model_points as f64;
-                if let Some(c) = s.model_fraction(model, &profile, tau, p)? {
-                    line.push((p, c));
-                    curves.push(vec![
-                        name.clone().into(),
-                        tau.into(),
-                        model.name().into(),
-                        p.into(),
-                        c.into(),
-                        Cell::Empty,
-                    ]);
-                }
-            }
-            if drawn {
-                let label = if model.frictionless() {
-                    model.name().to_string()
-                } else {
-                    format!("{}, τ_max = {tau} MPa", model.name())
-                };
-                series.push(Series::dashed(
-                    Some(label),
-                    model.color(),
-                    1 + t as u32,
-                    line,
-                ));
-            }
-            let mut row = error_row(s, &name, tau, model, &profile, fe)?;
-            let model_error = match row[5] {
-                Cell::Num(e) => Some(e),
-                _ => None,
-            };
-            row.push(fe_error.into());
-            row.push(fe_error.zip(model_error).map(|(f, m)| f / m).into());
-            errors.push(row);
-        }
-    }
-    let x_range = padded_range(series.iter().flat_map(|l| l.points.iter().map(|p| p.0)));
-    Ok(Panel {
-        title: format!("profile {name}"),
-        x_label: "p̄/E*".into(),
-        y_label: "contact fraction".into(),
-        x_range: (0.0, x_range.1),
-        y_range: (0.0, 1.0),
-        series,
-        notes: vec![],
-        legend: Some(LegendPosition::LowerRight),
-        log_scale: (false, false),
-    })
-}
-
-/// The estimate of the FE curve's relative error (root mean square over its points with a
-/// contact fraction of at least `error_from_contact_fraction`,
-/// [`contact_fraction_error_estimate`]) from the same case on `error_estimate_mesh`, over the
-/// load range both reach (a coarse curve may stop short); `None` when the curve is incomplete or
-/// they share no point.
-fn fe_error_estimate(s: &TwoScaleScene, case: &FeCase, solved: &SolvedCases) -> Option<f64> {
-    let ratio = s.mesh as f64 / s.error_estimate_mesh as f64;
-    let fine = solved.outcome(case)?;
-    let coarse = solved.outcome(&s.coarse_case(case))?;
-    if fine.failure.is_some() {
-        return None;
-    }
-    contact_fraction_error_estimate(
-        &fine.points,
-        &coarse.points,
-        ratio,
-        s.fe_error_order,
-        s.error_from_contact_fraction,
-    )
-}
-
-/// The errors of `model` against the FE curve at its points with a contact fraction of at
-/// least `error_from_contact_fraction` (where the model has an answer).
-fn error_row(
-    s: &TwoScaleScene,
-    name: &str,
-    tau: f64,
-    model: Model,
-    profile: &Profile,
-    fe: &FeOutcome,
-) -> Result<Vec<Cell>> {
-    let (mut count, mut max_rel, mut sum_sq, mut max_abs) = (0usize, 0.0_f64, 0.0, 0.0_f64);
-    for p in fe
-        .points
-        .iter()
-        .filter(|p| p.contact_fraction >= s.error_from_contact_fraction)
-    {
-        if let Some(c) = s.model_fraction(model, profile, tau, p.p_over_estar)? {
-            let rel = c / p.contact_fraction - 1.0;
-            count += 1;
-            max_rel = max_rel.max(rel.abs());
-            sum_sq += rel * rel;
-            max_abs = max_abs.max((c - p.contact_fraction).abs());
-        }
-    }
-    let rms = (count > 0).then(|| (sum_sq / count as f64).sqrt());
-    Ok(vec![
-        name.into(),
-        tau.into(),
-        model.name().into(),
-        Cell::Num(count as f64),
-        (count > 0).then_some(max_rel).into(),
-        rms.into(),
-        (count > 0).then_some(max_abs).into(),
-    ])
-}
-
-/// Where the contact patches lie (x/λ in the half wavelength) against p̄/E*: one segment per
-/// patch per load event.
-fn contact_map(name: &str, fe: &FeOutcome) -> Panel {
-    let mut series = vec![];
-    let p_max = fe.points.last().map_or(1.0, |p| p.p_over_estar);
-    for (p, patches) in fe.points.iter().zip(&fe.patch_edges) {
-        for e in patches {
-            series.push(Series::line(
-                None,
-                RGBColor(0, 0, 0),
-                2,
-                vec![(e[0], p.p_over_estar), (e[1], p.p_over_estar)],
-            ));
-        }
-    }
-    let most = fe.points.iter().map(|p| p.patches).max().unwrap_or(0);
-    Panel {
-        title: format!("contact patches, {name}, frictionless"),
-        x_label: "x/λ".into(),
-        y_label: "p̄/E*".into(),
-        x_range: (0.0, 0.5),
-        y_range: (0.0, p_max * 1.02),
-        series,
-        notes: vec![format!(
-            "up to {most} patches; p̄/E* up to {}",
-            sig_digits(p_max, 3)
-        )],
-        legend: None,
-        log_scale: (false, false),
-    }
 }
