@@ -32,6 +32,23 @@ fn westergaard_a(p_over_estar: f64) -> f64 {
     (p_over_estar / (pi * CALIBRATION_AR)).sqrt().asin() / pi
 }
 
+/// The curve of `pb` under `opts` with the edge at the fractions 0 and 1 of the last loaded
+/// element: event by event, the element's two ends (the points converged, where the curve stops
+/// short of its target).
+fn element_ends(pb: &LayerProblem, opts: &SolveOptions) -> (Vec<CurvePoint>, Vec<CurvePoint>) {
+    let run = |phi| {
+        let o = SolveOptions {
+            edge_rule: EdgeRule::Fraction(phi),
+            ..*opts
+        };
+        match solve_curve(pb, &o, &mut |_| ControlFlow::Continue(())) {
+            Ok(c) => c.points,
+            Err(f) => f.points,
+        }
+    };
+    (run(0.0), run(1.0))
+}
+
 /// Calibration of `DISCRETE_EDGE_FRACTION`: the edge that Westergaard gives for the computed `p̄`
 /// on [`calibration_problem`], as a fraction of `[x_{k−1}, x_k]` (the two ends from the fractions
 /// 0 and 1), per mesh level.
@@ -39,17 +56,11 @@ fn calibrate(levels: &[usize], ny_over_nx: f64, opts: &SolveOptions) {
     let pb = calibration_problem();
     for &nx in levels {
         let ny = ((nx as f64 * ny_over_nx).round() as usize).max(1);
-        let run = |phi| {
-            let o = SolveOptions {
-                mesh: MeshLevel::Elements { nx, ny },
-                edge_rule: EdgeRule::Fraction(phi),
-                ..*opts
-            };
-            solve_curve(&pb, &o, &mut |_| ControlFlow::Continue(()))
-                .expect("linear curve")
-                .points
+        let o = SolveOptions {
+            mesh: MeshLevel::Elements { nx, ny },
+            ..*opts
         };
-        let (lo, hi) = (run(0.0), run(1.0));
+        let (lo, hi) = element_ends(&pb, &o);
         let mut phis = Vec::new();
         for (l, h) in lo.iter().zip(&hi) {
             let a = westergaard_a(l.p_over_estar);
@@ -81,19 +92,12 @@ fn layer_phi(levels: &[usize], ny_over_nx: f64, opts: &SolveOptions) {
     let profile = wavy::profile::Profile::sinusoid(CALIBRATION_AR);
     for &nx in levels {
         let ny = ((nx as f64 * ny_over_nx).round() as usize).max(1);
-        let run = |phi| {
-            let o = SolveOptions {
-                mesh: MeshLevel::Elements { nx, ny },
-                edge_rule: EdgeRule::Fraction(phi),
-                until_a_over_lambda: 0.4999,
-                ..*opts
-            };
-            match solve_curve(&pb, &o, &mut |_| ControlFlow::Continue(())) {
-                Ok(c) => c.points,
-                Err(f) => f.points,
-            }
+        let o = SolveOptions {
+            mesh: MeshLevel::Elements { nx, ny },
+            until_a_over_lambda: 0.4999,
+            ..*opts
         };
-        let (lo, hi) = (run(0.0), run(1.0));
+        let (lo, hi) = element_ends(&pb, &o);
         println!("nx {nx}, ny {ny}:");
         for (k, (l, h)) in lo.iter().zip(&hi).enumerate() {
             if k % 16 != 0 && k + 10 < lo.len() {
