@@ -6,8 +6,7 @@
 //! UNTIL (contact fraction, 0.9), BEM_N (points per wavelength, 16384), DEPTH (elements across
 //! the thickness per element along the face, 0.25 as the two-scale scenes), REF (a curve CSV
 //! written by OUT, the finite-strain reference instead of the finest mesh), OUT (folder for
-//! `mN.csv`, optional). From mesh 768 on the Newton solves take an absolute residual tolerance of
-//! 1e-12 (G + κ), the default's ten times. Prints the relative RMS / mean / max error over points with contact
+//! `mN.csv`, optional). Prints the relative RMS / mean / max error over points with contact
 //! fraction ≥ 0.05. Diagnostics: BEM_AT (comma-separated p̄/E*: only the BEM's fraction and
 //! patches there), DIAG (`lo,hi`: each FE point's patches in that p̄/E* range beside the BEM's),
 //! CHANGES (linear: where the FE's patch count changes, whether the BEM's changes over the same
@@ -160,14 +159,6 @@ fn main() {
             },
             grading: Grading::uniform_face(),
             until_contact_fraction: Some(until),
-            // the first event stalls at a residual of about 1.4e-10 from mesh 768 on (Newton
-            // converging linearly there), above the default absolute tolerance (1e-13 (G + κ));
-            // the finest references take 1e-12 (docs/verification.md, two-scale profiles)
-            residual_atol: if mesh >= 768 {
-                1e-12
-            } else {
-                SolveOptions::default().residual_atol
-            },
             ..Default::default()
         };
         let t = Instant::now();
