@@ -62,13 +62,36 @@ impl GridCompliance {
 
     /// `out = K p`.
     pub(super) fn apply(&mut self, p: &[f64], out: &mut [f64]) {
-        for (b, &v) in self.buffer.iter_mut().zip(p) {
-            *b = Complex::new(v, 0.0);
+        self.transform(p, out, |_, w| Complex::new(w, 0.0));
+    }
+
+    /// `out = K H v`: each harmonic of `v` scaled by the compliance and by the Hilbert
+    /// transform's symbol `−i sign(k)` (`H cos = sin`, `H sin = −cos`; `(H v)(x) = (1/π) PV∫
+    /// v(s)/(x − s) ds` on the period), the Nyquist harmonic dropped (its sine vanishes on the
+    /// grid). The half-plane's normal–tangential coupling is `β` times this ([`super::friction`]).
+    pub(super) fn apply_hilbert(&mut self, v: &[f64], out: &mut [f64]) {
+        let n = self.weights.len();
+        self.transform(v, out, |k, w| match (2 * k).cmp(&n) {
+            std::cmp::Ordering::Less => Complex::new(0.0, -w),
+            std::cmp::Ordering::Greater => Complex::new(0.0, w),
+            std::cmp::Ordering::Equal => Complex::new(0.0, 0.0),
+        });
+    }
+
+    /// `out = F⁻¹ diag(factor(k, w_k)) F v`.
+    fn transform(
+        &mut self,
+        v: &[f64],
+        out: &mut [f64],
+        factor: impl Fn(usize, f64) -> Complex<f64>,
+    ) {
+        for (b, &x) in self.buffer.iter_mut().zip(v) {
+            *b = Complex::new(x, 0.0);
         }
         self.forward
             .process_with_scratch(&mut self.buffer, &mut self.scratch);
-        for (b, &w) in self.buffer.iter_mut().zip(&self.weights) {
-            *b *= w;
+        for (k, (b, &w)) in self.buffer.iter_mut().zip(&self.weights).enumerate() {
+            *b *= factor(k, w);
         }
         self.inverse
             .process_with_scratch(&mut self.buffer, &mut self.scratch);
@@ -101,6 +124,31 @@ mod tests {
                     (ui - want).abs() < 1e-15,
                     "k = {k}, i = {i}: {ui} vs {want}"
                 );
+            }
+        }
+    }
+
+    /// `K H cos 2πkx = (2/(2πk)) sin 2πkx` and `K H sin 2πkx = −(2/(2πk)) cos 2πkx`: the
+    /// Hilbert transform's pairs (Johnson, *Contact Mechanics*, eqs. 2.25) through the
+    /// compliance.
+    #[test]
+    fn the_hilbert_operator_turns_cosines_into_sines() {
+        let n = 64;
+        let mut k_op = GridCompliance::new(n);
+        let x = |i: usize| i as f64 / n as f64;
+        for k in [1usize, 3, 31] {
+            let w = 2.0 / (std::f64::consts::TAU * k as f64);
+            let arg = |i: usize| std::f64::consts::TAU * k as f64 * x(i);
+            let cos: Vec<f64> = (0..n).map(|i| arg(i).cos()).collect();
+            let sin: Vec<f64> = (0..n).map(|i| arg(i).sin()).collect();
+            let mut out = vec![0.0; n];
+            k_op.apply_hilbert(&cos, &mut out);
+            for i in 0..n {
+                assert!((out[i] - w * sin[i]).abs() < 1e-15, "cos, k = {k}, i = {i}");
+            }
+            k_op.apply_hilbert(&sin, &mut out);
+            for i in 0..n {
+                assert!((out[i] + w * cos[i]).abs() < 1e-15, "sin, k = {k}, i = {i}");
             }
         }
     }

@@ -41,8 +41,13 @@
 
 mod compliance;
 mod edges;
+pub mod friction;
+#[cfg(test)]
+mod friction_tests;
+pub mod frictional_curve;
 mod grid;
 mod polonsky_keer;
+mod shear_cg;
 #[cfg(test)]
 mod solver_tests;
 
@@ -88,6 +93,19 @@ pub enum BemError {
         p_over_estar: f64,
         /// Where full contact starts ([`full_contact_pressure`]).
         full_contact: f64,
+    },
+    /// Friction asked of a layer, whose normal–tangential coupling the solver does not model.
+    #[error("boundary-element solver: friction (μ = {friction_coefficient}, τ_max/E* = {tau_max_over_estar}) is modelled on the half-plane only; a layer is solved frictionless")]
+    FrictionOnLayer {
+        friction_coefficient: f64,
+        tau_max_over_estar: f64,
+    },
+    /// A load curve's target not reached by its increments.
+    #[error("boundary-element solver: the load curve stops short of its target {target} (reached {reached} after {increments} increments)")]
+    TargetOutOfReach {
+        target: f64,
+        reached: f64,
+        increments: usize,
     },
     /// Polonsky–Keer iteration did not meet the tolerance.
     #[error("boundary-element solver did not converge for p̄/E* = {p_over_estar}, N = {points}: {reason} after {iterations} iterations (complementarity residual {residual:.3e} × tol, tol = {tol:e})")]

@@ -56,8 +56,43 @@ pub(super) fn solve(
     gap_tol: f64,
     max_iterations: usize,
 ) -> Result<GridSolution, Stalled> {
+    iterate(
+        vec![p_mean; s.len()],
+        s,
+        p_mean,
+        k_op,
+        gap_tol,
+        max_iterations,
+    )
+}
+
+/// [`solve`] from the initial pressure `p` (non-negative, a positive sum; rescaled to the mean
+/// `p_mean` first): a nearby solution's pressure, so that a sequence of close problems (the
+/// frictional solver's alternation, [`super::friction`]) starts each from the last.
+pub(super) fn solve_from(
+    mut p: Vec<f64>,
+    s: &[f64],
+    p_mean: f64,
+    k_op: &mut GridCompliance,
+    gap_tol: f64,
+    max_iterations: usize,
+) -> Result<GridSolution, Stalled> {
+    if rescale_to_mean(&mut p, p_mean).is_none() {
+        p = vec![p_mean; s.len()];
+    }
+    iterate(p, s, p_mean, k_op, gap_tol, max_iterations)
+}
+
+/// The iteration of [`solve`] from the pressure `p` (mean `p_mean`).
+fn iterate(
+    mut p: Vec<f64>,
+    s: &[f64],
+    p_mean: f64,
+    k_op: &mut GridCompliance,
+    gap_tol: f64,
+    max_iterations: usize,
+) -> Result<GridSolution, Stalled> {
     let n = s.len();
-    let mut p = vec![p_mean; n];
     let mut t = vec![0.0; n];
     let mut g = vec![0.0; n];
     let mut r = vec![0.0; n];

@@ -10,6 +10,7 @@
 pub mod coefficient_sets;
 pub mod domain;
 pub mod inverse;
+pub mod spence;
 pub mod superposition;
 pub mod westergaard;
 pub mod wnl;

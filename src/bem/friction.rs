@@ -1,0 +1,399 @@
+//! Frictional contact on the periodic half-plane: a rigid even profile pressed by a mean
+//! pressure onto a compressible linear elastic half-plane with Coulomb–Orowan friction, the
+//! slip history carried from increment to increment (loading and unloading).
+//!
+//! Units: lengths over λ, tractions over E*.
+//!
+//! # Coupling
+//!
+//! With `p` the contact pressure and `q` the shear traction on the solid (along `+x`), the
+//! half-plane's surface displacements (`u_z` into the solid, `u_x` along `+x`) follow from
+//! Johnson's eqs. 2.25 (*Contact Mechanics*, 1985), harmonic by harmonic:
+//!
+//! ```text
+//! u_z = K p + β K H q,     u_x = K q − β K H p
+//! ```
+//!
+//! `K` the frictionless compliance (`2/(E*|q_k|)`), `H` the periodic Hilbert transform
+//! (`H cos = sin`), `β = (1 − 2ν)/(2(1 − ν))` Dundurs' parameter for a rigid indenter. The
+//! operator is symmetric and positive definite for `|β| < 1`. With `β = 0` (incompressible)
+//! the normal and tangential problems decouple and normal loading makes no shear.
+//!
+//! # One increment (from the committed state to the mean pressure `p̄`)
+//!
+//! The slip of the increment is `Δu_x` (the rigid surface does not move sideways); the law: stick
+//! (`Δu_x = 0`) where `|q| < f`, else `q = −f sign(Δu_x)`, `f = min(μ p, τ_max)`, `q = 0` off
+//! the contact. The increment alternates two solves until `q` stops changing:
+//! 1. the normal problem for `p` at `q` fixed: frictionless contact of the shifted surface
+//!    `s + β K H q` ([`super::polonsky_keer`], from the last pressure);
+//! 2. the tangential problem for `q` at `p` fixed: the bound-constrained minimum of
+//!    `½ qᵀKq + qᵀ(−β K H p − u_x⁰)` with `|q| ≤ f(p)` ([`super::shear_cg`]), whose gradient is the
+//!    slip and whose optimality conditions are the law.
+//!
+//! [`NormalCoupling::Goodman`] drops `β K H q` from step 1 (Goodman's approximation: the
+//! pressure is the frictionless one), which makes the increment a single pass.
+//!
+//! The slip is backward Euler: the law holds for the increment's slip at its end state, so the
+//! dissipation of the increment is `Σ_i |q_i| |Δu_x,i| / N` per wavelength (E* λ²), which
+//! [`Increment`] reports for the energy audit.
+
+use super::grid::GridCompliance;
+use super::polonsky_keer::{self, Stalled};
+use super::ElasticBody;
+use super::{edges, min_points_per_wavelength, shear_cg, BemError};
+use crate::profile::Profile;
+
+/// Whether the shear traction acts back on the normal problem.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NormalCoupling {
+    /// Both ways (the elastic solution).
+    Full,
+    /// Goodman's approximation: the pressure as without friction, the shear from it.
+    Goodman,
+}
+
+/// The interface law: Coulomb–Orowan, `|q| ≤ min(μ p, τ_max)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct InterfaceLaw {
+    /// Friction coefficient μ (≥ 0).
+    pub friction_coefficient: f64,
+    /// Shear strength τ_max/E* (≥ 0; `f64::INFINITY` for pure Coulomb).
+    pub tau_max_over_estar: f64,
+}
+
+impl InterfaceLaw {
+    /// Whether any shear can be carried (`μ > 0` and `τ_max > 0`).
+    pub fn admits_friction(&self) -> bool {
+        self.friction_coefficient > 0.0 && self.tau_max_over_estar > 0.0
+    }
+
+    /// The slip threshold `min(μ p, τ_max)` at the pressure `p` (0 off the contact).
+    pub fn threshold(&self, p: f64) -> f64 {
+        if p > 0.0 {
+            (self.friction_coefficient * p).min(self.tau_max_over_estar)
+        } else {
+            0.0
+        }
+    }
+}
+
+/// A frictional problem on the half-plane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrictionalProblem<'a> {
+    pub profile: &'a Profile,
+    /// The half-plane; a layer only without friction (its normal–tangential coupling is not
+    /// modelled: [`BemError::FrictionOnLayer`]).
+    pub body: ElasticBody,
+    /// Poisson ratio ν of the half-plane (`−1 < ν ≤ ½`).
+    pub poisson: f64,
+    pub law: InterfaceLaw,
+    pub coupling: NormalCoupling,
+    /// Grid points per wavelength (a power of two, at least [`min_points_per_wavelength`]).
+    pub points_per_wavelength: usize,
+    /// Relative tolerance (`0 < tol < 1`): gaps and slips within `tol · Σ Δ_k`.
+    pub tol: f64,
+}
+
+/// Dundurs' `β = (1 − 2ν)/(2(1 − ν))` of an elastic body on a rigid one.
+pub fn dundurs_beta(poisson: f64) -> f64 {
+    (1.0 - 2.0 * poisson) / (2.0 * (1.0 - poisson))
+}
+
+/// The state an increment starts from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrictionalState {
+    /// `p/E*` on the grid.
+    pub pressure_over_estar: Vec<f64>,
+    /// `q/E*` on the grid (odd).
+    pub shear_over_estar: Vec<f64>,
+    /// `u_x/λ` on the grid, the tangential displacement the next slip is measured from.
+    pub tangential_displacement_over_lambda: Vec<f64>,
+}
+
+/// One converged increment: the end state and what it measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Increment {
+    pub state: FrictionalState,
+    /// `g/λ` on the grid.
+    pub gap_over_lambda: Vec<f64>,
+    /// The mean pressure `p̄/E*`.
+    pub p_over_estar: f64,
+    /// `δ/λ`: the rigid peak past the mean plane of the deformed surface.
+    pub approach_over_lambda: f64,
+    /// Contact intervals in `[0, ½]` ([`edges::patches`]).
+    pub patches: Vec<[f64; 2]>,
+    /// Total contact length over λ.
+    pub contact_fraction: f64,
+    /// Contact points on the grid.
+    pub contact_points: usize,
+    /// Stick length over λ: the contact points below their slip threshold, one grid step each.
+    pub stick_fraction: f64,
+    /// Half-width over λ of the stick zone through the peak (`x = 0`): halfway between its last
+    /// stick point and the first slip point, or the patch edge when the whole patch sticks.
+    pub stick_half_width_over_lambda: f64,
+    /// `Σ |q| |Δu_x| / N`: the work of friction at the face in this increment, over E* λ²
+    /// (per unit length of ridge and per wavelength).
+    pub dissipation_over_estar_lambda2: f64,
+    /// Normal and tangential passes of the alternation.
+    pub passes: usize,
+    /// Conjugate-gradient iterations of all passes, normal and tangential.
+    pub iterations: usize,
+}
+
+/// The converged grid fields of an increment (units of the module doc).
+struct Fields {
+    pressure: Vec<f64>,
+    shear: Vec<f64>,
+    gap: Vec<f64>,
+    /// `Δu_x` of the increment.
+    slip: Vec<f64>,
+    /// `δ`.
+    approach: f64,
+}
+
+/// The alternation's cap (each pass contracts the change of `q` by about `β²`).
+const MAX_PASSES: usize = 200;
+
+/// The frictional solver of one problem: its grid, operator and committed state.
+pub struct FrictionalContact {
+    law: InterfaceLaw,
+    coupling: NormalCoupling,
+    beta: f64,
+    depth: Vec<f64>,
+    k_op: GridCompliance,
+    tol_abs: f64,
+    full_contact: f64,
+    committed: FrictionalState,
+}
+
+impl FrictionalContact {
+    /// The problem checked and its operator built, in the unloaded state.
+    pub fn new(problem: &FrictionalProblem) -> Result<Self, BemError> {
+        let profile = Profile::new(&problem.profile.harmonics().collect::<Vec<_>>())?;
+        let n = problem.points_per_wavelength;
+        check_inputs(problem, &profile)?;
+        let depth: Vec<f64> = (0..n).map(|i| -profile.y(i as f64 / n as f64)).collect();
+        Ok(Self {
+            law: problem.law,
+            coupling: problem.coupling,
+            beta: dundurs_beta(problem.poisson),
+            depth,
+            k_op: GridCompliance::on(n, problem.body)?,
+            tol_abs: problem.tol * profile.amplitude_sum(),
+            full_contact: super::full_contact_pressure_on(&profile, problem.body)?,
+            committed: FrictionalState {
+                pressure_over_estar: vec![0.0; n],
+                shear_over_estar: vec![0.0; n],
+                tangential_displacement_over_lambda: vec![0.0; n],
+            },
+        })
+    }
+
+    /// The committed state.
+    pub fn state(&self) -> &FrictionalState {
+        &self.committed
+    }
+
+    /// Makes `increment`'s end state the one the next increment starts from.
+    pub fn commit(&mut self, increment: &Increment) {
+        self.committed = increment.state.clone();
+    }
+
+    /// The increment from the committed state to the mean pressure `p_over_estar` (not
+    /// committed).
+    pub fn increment(&mut self, p_over_estar: f64) -> Result<Increment, BemError> {
+        if !(p_over_estar.is_finite() && p_over_estar > 0.0) {
+            return Err(BemError::InvalidInput {
+                field: "mean pressure p̄/E*",
+                value: p_over_estar,
+                allowed: "finite, > 0",
+            });
+        }
+        if p_over_estar >= self.full_contact {
+            return Err(BemError::FullContact {
+                p_over_estar,
+                full_contact: self.full_contact,
+            });
+        }
+        let n = self.depth.len();
+        let stalled = |s: Stalled| BemError::NoConvergence {
+            p_over_estar,
+            points: n,
+            iterations: s.iterations,
+            residual: s.residual,
+            tol: self.tol_abs,
+            reason: s.reason,
+        };
+        let mut q = self.committed.shear_over_estar.clone();
+        let mut p = self.committed.pressure_over_estar.clone();
+        let mut shifted = self.depth.clone();
+        let mut scratch = vec![0.0; n];
+        let mut iterations = 0;
+        let max_iterations = 1000 + 20 * (n as f64).sqrt() as usize;
+        for pass in 1..=MAX_PASSES {
+            if self.coupling == NormalCoupling::Full && self.beta != 0.0 {
+                self.k_op.apply_hilbert(&q, &mut scratch);
+                for ((si, &di), &hi) in shifted.iter_mut().zip(&self.depth).zip(&scratch) {
+                    *si = di + self.beta * hi;
+                }
+            }
+            let normal = polonsky_keer::solve_from(
+                p,
+                &shifted,
+                p_over_estar,
+                &mut self.k_op,
+                self.tol_abs,
+                max_iterations,
+            )
+            .map_err(stalled)?;
+            iterations += normal.iterations;
+            let bound: Vec<f64> = normal
+                .pressure
+                .iter()
+                .map(|&pi| self.law.threshold(pi))
+                .collect();
+            self.k_op.apply_hilbert(&normal.pressure, &mut scratch);
+            let b: Vec<f64> = scratch
+                .iter()
+                .zip(&self.committed.tangential_displacement_over_lambda)
+                .map(|(&hp, &u0)| -self.beta * hp - u0)
+                .collect();
+            let shear = shear_cg::solve(
+                q.clone(),
+                &b,
+                &bound,
+                &mut self.k_op,
+                self.tol_abs,
+                max_iterations,
+            )
+            .map_err(stalled)?;
+            iterations += shear.iterations;
+            let change = q
+                .iter()
+                .zip(&shear.shear)
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            q = shear.shear;
+            p = normal.pressure;
+            let settled = self.coupling == NormalCoupling::Goodman
+                || self.beta == 0.0
+                || change * self.k_op.diagonal() <= self.tol_abs;
+            if settled {
+                let fields = Fields {
+                    pressure: p,
+                    shear: q,
+                    gap: normal.gap,
+                    slip: shear.slip,
+                    approach: normal.approach,
+                };
+                return Ok(self.measure(fields, pass, iterations));
+            }
+        }
+        Err(stalled(Stalled {
+            iterations: MAX_PASSES,
+            residual: f64::NAN,
+            reason: "the normal–tangential alternation did not settle",
+        }))
+    }
+
+    /// The increment's measures from its converged fields.
+    fn measure(&self, fields: Fields, passes: usize, iterations: usize) -> Increment {
+        let Fields {
+            pressure: p,
+            shear: q,
+            gap,
+            slip,
+            approach,
+        } = fields;
+        let n = p.len();
+        let patches = edges::patches(&p, &gap);
+        let contact_fraction = 2.0 * patches.iter().map(|[a, b]| b - a).sum::<f64>();
+        let sticks = |i: usize| p[i] > 0.0 && q[i].abs() < self.law.threshold(p[i]);
+        let stick_points = (0..n).filter(|&i| sticks(i)).count();
+        let central_run = (0..=n / 2).take_while(|&i| sticks(i)).count();
+        let first_patch_end = patches.first().map_or(0.0, |p| p[1]);
+        let stick_half_width = if central_run == 0 {
+            0.0
+        } else if central_run > n / 2 || p[central_run] <= 0.0 {
+            first_patch_end
+        } else {
+            ((central_run as f64 - 0.5) / n as f64).min(first_patch_end)
+        };
+        let dissipation = q
+            .iter()
+            .zip(&slip)
+            .map(|(qi, si)| (qi * si).abs())
+            .sum::<f64>()
+            / n as f64;
+        let u_x: Vec<f64> = self
+            .committed
+            .tangential_displacement_over_lambda
+            .iter()
+            .zip(&slip)
+            .map(|(u0, s)| u0 + s)
+            .collect();
+        Increment {
+            p_over_estar: p.iter().sum::<f64>() / n as f64,
+            contact_points: p.iter().filter(|&&pi| pi > 0.0).count(),
+            state: FrictionalState {
+                pressure_over_estar: p,
+                shear_over_estar: q,
+                tangential_displacement_over_lambda: u_x,
+            },
+            gap_over_lambda: gap,
+            approach_over_lambda: approach,
+            contact_fraction,
+            patches,
+            stick_fraction: stick_points as f64 / n as f64,
+            stick_half_width_over_lambda: stick_half_width,
+            dissipation_over_estar_lambda2: dissipation,
+            passes,
+            iterations,
+        }
+    }
+}
+
+/// The ranges of a frictional problem.
+fn check_inputs(problem: &FrictionalProblem, profile: &Profile) -> Result<(), BemError> {
+    let invalid = |field, value, allowed| {
+        Err(BemError::InvalidInput {
+            field,
+            value,
+            allowed,
+        })
+    };
+    let nu = problem.poisson;
+    if !(nu.is_finite() && nu > -1.0 && nu <= 0.5) {
+        return invalid("Poisson ratio ν", nu, "−1 < ν ≤ ½");
+    }
+    let mu = problem.law.friction_coefficient;
+    if !(mu.is_finite() && mu >= 0.0) {
+        return invalid("friction coefficient μ", mu, "finite, ≥ 0");
+    }
+    let tau = problem.law.tau_max_over_estar;
+    if !(tau >= 0.0) {
+        return invalid("shear strength τ_max/E*", tau, "≥ 0 (∞ allowed)");
+    }
+    let tol = problem.tol;
+    if !(tol.is_finite() && tol > 0.0 && tol < 1.0) {
+        return invalid("relative tolerance", tol, "0 < tol < 1");
+    }
+    if problem.body != ElasticBody::HalfPlane && problem.law.admits_friction() {
+        return Err(BemError::FrictionOnLayer {
+            friction_coefficient: mu,
+            tau_max_over_estar: tau,
+        });
+    }
+    let n = problem.points_per_wavelength;
+    let minimum = min_points_per_wavelength(profile);
+    if !n.is_power_of_two() || n < minimum || n > super::MAX_POINTS_PER_WAVELENGTH {
+        return Err(BemError::Grid {
+            points: n,
+            minimum,
+            why: format!(
+                "16 points on the wavelength of the highest order {}, at least 64, at most 2^24",
+                profile.max_order()
+            ),
+        });
+    }
+    Ok(())
+}
