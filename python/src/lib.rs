@@ -21,6 +21,7 @@ use wavy::runner::requests::input_checks::{self, out_of_range, InputError};
 use wavy::runner::requests::request_error::{full_message, RequestError};
 use wavy::runner::requests::solve_outcome::{Column, ExtraColumn, SolveOutcome};
 use wavy::runner::requests::solve_request::{self, SolveRequest};
+use wavy::runner::requests::solver::Solver;
 use wavy::runner::requests::tolerance_choice;
 
 /// A message of the library in Python's words: every command-line flag `--some-name` becomes
@@ -158,8 +159,18 @@ fn outcome_dict<'py>(py: Python<'py>, o: &SolveOutcome) -> PyResult<Bound<'py, P
             Column::Name(v) => d.set_item(name, v)?,
         }
     }
-    d.set_item("mesh", o.mesh.counts())?;
+    d.set_item("mesh", o.mesh.map(|m| m.counts()))?;
+    d.set_item("grid_points", o.grid_points)?;
     d.set_item("unknowns", o.unknowns)?;
+    d.set_item(
+        "cycle_work_over_estar_lambda2",
+        o.cycle_energy.map(|e| e.cycle_work_over_estar_lambda2),
+    )?;
+    d.set_item(
+        "face_dissipation_over_estar_lambda2",
+        o.cycle_energy
+            .map(|e| e.face_dissipation_over_estar_lambda2),
+    )?;
     d.set_item("load_steps", o.load_steps())?;
     d.set_item("newton_iterations_total", o.newton_iterations())?;
     d.set_item("tangent_assemblies", o.work.tangent_assemblies)?;
@@ -225,7 +236,7 @@ fn solve_on_thread(
 #[pyfunction]
 #[pyo3(signature = (*, ar, tau_max_mpa, mu, estar_mpa, kappa_over_g, thickness_over_lambda,
     kinematics, mesh, tolerance, error_estimate, until_a_over_lambda, until_p_over_estar, unload,
-    vtk, profile, until_contact_fraction, max_memory))]
+    vtk, profile, until_contact_fraction, max_memory, solver, grid_points, points, half_plane))]
 #[allow(clippy::too_many_arguments)]
 fn solve<'py>(
     py: Python<'py>,
@@ -235,7 +246,7 @@ fn solve<'py>(
     estar_mpa: f64,
     kappa_over_g: f64,
     thickness_over_lambda: f64,
-    kinematics: &str,
+    kinematics: Option<&str>,
     mesh: Option<&str>,
     tolerance: Option<f64>,
     error_estimate: bool,
@@ -246,7 +257,20 @@ fn solve<'py>(
     profile: Option<&str>,
     until_contact_fraction: Option<f64>,
     max_memory: Option<u64>,
+    solver: &str,
+    grid_points: Option<usize>,
+    points: Option<usize>,
+    half_plane: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let solver = parse_name::<Solver>("--solver", solver, &Solver::ALL.map(Solver::name))?;
+    // the command line's default: finite strain, but linear for the boundary-element solver
+    let kinematics = match kinematics {
+        Some(name) => {
+            parse_name::<Kinematics>("--kinematics", name, &Kinematics::ALL.map(Kinematics::name))?
+        }
+        None if solver == Solver::BoundaryElement => Kinematics::Linear,
+        None => Kinematics::Finite,
+    };
     // `profile` (the command line's --profile) instead of `ar` (its shorthand --ar)
     let (ar, finer_harmonics) = match profile {
         Some(text) => {
@@ -261,11 +285,7 @@ fn solve<'py>(
         estar_mpa,
         kappa_over_g,
         thickness_over_lambda,
-        kinematics: parse_name::<Kinematics>(
-            "--kinematics",
-            kinematics,
-            &Kinematics::ALL.map(Kinematics::name),
-        )?,
+        kinematics,
         mesh: mesh
             .map(input_checks::mesh)
             .transpose()
@@ -278,15 +298,23 @@ fn solve<'py>(
         unload,
         max_memory,
         finer_harmonics,
+        solver,
+        grid_points,
+        points,
+        half_plane,
         ..SolveRequest::new(ar)
     };
     // the notes the command line gives on stderr, for the result's metadata
-    let prepared = request.prepare().map_err(to_py_err)?;
     let mut notes: Vec<String> = vec![];
-    if let (Some(choice), Some(t)) = (&prepared.tolerance_choice, tolerance) {
-        notes.push(tolerance_choice::announcement(choice, t));
+    if solver == Solver::BoundaryElement {
+        request.prepare_bem().map_err(to_py_err)?;
+    } else {
+        let prepared = request.prepare().map_err(to_py_err)?;
+        if let (Some(choice), Some(t)) = (&prepared.tolerance_choice, tolerance) {
+            notes.push(tolerance_choice::announcement(choice, t));
+        }
+        notes.extend(prepared.notes.iter().cloned());
     }
-    notes.extend(prepared.notes.iter().cloned());
     let notes: Vec<String> = notes.iter().map(|n| in_python_words(n)).collect();
     let extrapolated = !FitDomain::PAPER.contains(request.ar, request.tau_max_mpa);
     let with_metadata = |d: Bound<'py, PyDict>| -> PyResult<Bound<'py, PyDict>> {
@@ -376,11 +404,13 @@ fn _wavy(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // the columns of a result, in the order `wavy solve` prints them (the one list of them:
     // `SolveOutcome::columns`), without the optional `error_estimate`
     let empty = SolveOutcome {
-        mesh: wavy::fe::MeshLevel::Default,
+        mesh: None,
+        grid_points: None,
         unknowns: 0,
         extra: ExtraColumn::None,
         rows: vec![],
         work: wavy::fe::SolveWork::default(),
+        cycle_energy: None,
     };
     let columns: Vec<&str> = empty.columns().iter().map(|(name, _)| *name).collect();
     m.add("COLUMNS", columns)?;

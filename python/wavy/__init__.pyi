@@ -33,7 +33,8 @@ class Result:
     branch: npt.NDArray[np.str_]
     error_estimate: npt.NDArray[np.float64]
     columns: Tuple[str, ...]
-    mesh: Tuple[int, int]
+    mesh: Optional[Tuple[int, int]]
+    grid_points: Optional[int]
     unknowns: int
     load_steps: int
     newton_iterations_total: int
@@ -41,6 +42,8 @@ class Result:
     factorisations: int
     notes: List[str]
     extrapolated: bool
+    cycle_work_over_estar_lambda2: Optional[float]
+    face_dissipation_over_estar_lambda2: Optional[float]
     def __init__(self, fields: Dict[str, Any]) -> None: ...
     def __eq__(self, other: object) -> bool: ...
     def __len__(self) -> int: ...
@@ -93,11 +96,15 @@ def solve(
     estar_mpa: Optional[float] = None,
     kappa_over_g: Optional[float] = None,
     thickness_over_lambda: Optional[float] = None,
-    kinematics: Literal["finite", "linear"] = "finite",
+    kinematics: Optional[Literal["finite", "linear"]] = None,
     vtk: Optional[PathLike] = None,
     profile: Optional[str] = None,
     until_contact_fraction: Optional[float] = None,
     max_memory: Optional[float] = None,
+    solver: Literal["fe", "bem"] = "fe",
+    grid_points: Optional[int] = None,
+    points: Optional[int] = None,
+    half_plane: bool = False,
 ) -> Result: ...
 def run(spec_path: PathLike, out: Optional[PathLike] = None,
         cache: Optional[PathLike] = None) -> List[str]: ...

@@ -77,6 +77,18 @@ def mesh(value: Any) -> Optional[str]:
     return str(int(value))
 
 
+def optional_count(argument: str, value: Any) -> Optional[int]:
+    """None, or ``value``, an int >= 1 (Python's or numpy's), or ``TypeError`` / ``ValueError``
+    naming ``argument``."""
+    if value is None:
+        return None
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{argument} must be an int, not {_kind(value)} ({value!r})")
+    if not (1 <= int(value) < 2**63):
+        raise ValueError(f"{argument} = {value!r} is out of range; allowed: an int >= 1")
+    return int(value)
+
+
 def max_memory(value: Any) -> Optional[int]:
     """``max_memory``: None or a number of bytes (int or float, >= 0)."""
     if value is None:

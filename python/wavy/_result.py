@@ -17,6 +17,7 @@ COLUMNS: Tuple[str, ...] = tuple(_wavy.COLUMNS)
 #: The metadata of a ``Result``, after its columns.
 METADATA: Tuple[str, ...] = (
     "mesh",
+    "grid_points",
     "unknowns",
     "load_steps",
     "newton_iterations_total",
@@ -24,6 +25,8 @@ METADATA: Tuple[str, ...] = (
     "factorisations",
     "notes",
     "extrapolated",
+    "cycle_work_over_estar_lambda2",
+    "face_dissipation_over_estar_lambda2",
 )
 
 
@@ -80,10 +83,13 @@ class Result:
         ``p_over_estar`` (NaN below the coarser curve's first contact point).
     columns : tuple of str
         The column names above that this result has, in the order of ``wavy solve``'s CSV.
-    mesh : tuple of (int, int)
-        Elements along the contact face and across the thickness.
+    mesh : tuple of (int, int) or None
+        Elements along the contact face and across the thickness (None for
+        ``solver="bem"``).
+    grid_points : int or None
+        Grid points per wavelength of ``solver="bem"`` (None for the finite-element solver).
     unknowns : int
-        Nodal displacement unknowns (two per node).
+        Nodal displacement unknowns (two per node), or the grid's pressures.
     load_steps : int
         Converged load steps (the length of every column).
     newton_iterations_total : int
@@ -97,6 +103,10 @@ class Result:
         True when (ar, tau_max_mpa) lies outside the paper's fit domain of the WNL model
         (AR in [0.1, 0.3], τ_max in [0, 0.2] MPa): comparing this curve with :func:`wavy.wnl`
         compares it with an extrapolation.
+    cycle_work_over_estar_lambda2, face_dissipation_over_estar_lambda2 : float or None
+        Only for ``solver="bem"`` with ``unload=True`` (else None): the loop's work ∮ p̄ dδ
+        and the work of friction at the face summed over the increments, over E* λ² (per unit
+        ridge length and wavelength).
 
     Examples
     --------
@@ -116,7 +126,10 @@ class Result:
         )
         for column in self.columns:
             setattr(self, column, fields[column])
-        self.mesh: Tuple[int, int] = tuple(fields["mesh"])  # type: ignore[assignment]
+        mesh = fields.get("mesh")
+        self.mesh: Optional[Tuple[int, int]] = None if mesh is None else tuple(mesh)  # type: ignore[assignment]
+        grid = fields.get("grid_points")
+        self.grid_points: Optional[int] = None if grid is None else int(grid)
         self.unknowns: int = int(fields["unknowns"])
         self.load_steps: int = int(fields["load_steps"])
         self.newton_iterations_total: int = int(fields["newton_iterations_total"])
@@ -124,6 +137,11 @@ class Result:
         self.factorisations: int = int(fields["factorisations"])
         self.notes: List[str] = list(fields.get("notes", ()))
         self.extrapolated: bool = bool(fields.get("extrapolated", False))
+        work, face = (fields.get(k) for k in METADATA[-2:])
+        self.cycle_work_over_estar_lambda2: Optional[float] = None if work is None else float(work)
+        self.face_dissipation_over_estar_lambda2: Optional[float] = (
+            None if face is None else float(face)
+        )
 
     def _fields(self) -> Dict[str, Any]:
         return {k: getattr(self, k) for k in self.columns + METADATA}
@@ -143,14 +161,18 @@ class Result:
         return self.load_steps
 
     def __repr__(self) -> str:
-        nx, ny = self.mesh
+        on = (
+            f"mesh {self.mesh[0]}×{self.mesh[1]}"
+            if self.mesh is not None
+            else f"a grid of {self.grid_points} points"
+        )
         last = (
             f", last a/λ = {float(self.a_over_lambda[-1]):.6g},"
             f" p̄/E* = {float(self.p_over_estar[-1]):.6g}"
             if self.load_steps
             else ""
         )
-        return f"<wavy.Result: {self.load_steps} load steps on mesh {nx}×{ny}{last}>"
+        return f"<wavy.Result: {self.load_steps} load steps on {on}{last}>"
 
     def to_pandas(self):
         """The columns as a pandas DataFrame.

@@ -26,11 +26,15 @@ def solve(
     estar_mpa: Optional[float] = None,
     kappa_over_g: Optional[float] = None,
     thickness_over_lambda: Optional[float] = None,
-    kinematics: str = "finite",
+    kinematics: Optional[str] = None,
     vtk: Optional[PathLike] = None,
     profile: Optional[str] = None,
     until_contact_fraction: Optional[float] = None,
     max_memory: Optional[float] = None,
+    solver: str = "fe",
+    grid_points: Optional[int] = None,
+    points: Optional[int] = None,
+    half_plane: bool = False,
 ) -> Result:
     """One finite-element load curve, as ``wavy solve`` computes it with the same options.
 
@@ -83,7 +87,8 @@ def solve(
         None: 1.0.
     kinematics : str, optional
         "finite" (finite strain, neo-Hookean: the paper's physics) or "linear" (small
-        strain). Default "finite".
+        strain). Default None: "finite", and "linear" with ``solver="bem"`` (the only
+        kinematics it models).
     vtk : str or os.PathLike, optional
         A folder (created if missing; not a file) that receives the deformed state of every
         converged point as a ParaView time series: ``series.pvd`` and one ``step_NNNN.vtu``
@@ -102,6 +107,22 @@ def solve(
         bytes, e.g. ``4e9``. The estimate (docs/performance.md, "Large meshes") grows with the
         mesh: about 0.6 GB at mesh 512, 2.5 GB at 1024, 10 GB at 2048. A solve is refused
         above the memory the machine has available in any case. Default None (no cap).
+    solver : str, optional
+        "fe" (the finite-element solver) or "bem" (the boundary-element solver: linear
+        kinematics; the layer frictionless, or the half-plane with ``half_plane=True``, with
+        Coulomb–Orowan friction and its history). The columns are the same; with "bem",
+        ``slab_displacement_over_lambda`` holds the rigid approach δ/λ,
+        ``newton_iterations`` the normal–tangential passes and ``active_nodes`` the contact
+        grid points on [0, λ/2]. Default "fe".
+    grid_points : int, optional
+        With ``solver="bem"``: grid points per wavelength, a power of two. Default None:
+        4096, or 64 per wavelength of a profile's finest harmonic.
+    points : int, optional
+        With ``solver="bem"``: loading points up to the frictionless load of the target, in
+        [2, 10000]. Default None: 40.
+    half_plane : bool, optional
+        With ``solver="bem"``: the half-plane instead of the layer (needed for friction).
+        Default False.
 
     Returns
     -------
@@ -157,7 +178,7 @@ def solve(
         estar_mpa=or_default("estar_mpa", estar_mpa),
         kappa_over_g=or_default("kappa_over_g", kappa_over_g),
         thickness_over_lambda=or_default("thickness_over_lambda", thickness_over_lambda),
-        kinematics=_checks.name("kinematics", kinematics),
+        kinematics=None if kinematics is None else _checks.name("kinematics", kinematics),
         mesh=_checks.mesh(mesh),
         tolerance=_checks.optional_number("tolerance", tolerance),
         error_estimate=_checks.flag("error_estimate", error_estimate),
@@ -170,6 +191,10 @@ def solve(
             "until_contact_fraction", until_contact_fraction
         ),
         max_memory=_checks.max_memory(max_memory),
+        solver=_checks.name("solver", solver),
+        grid_points=_checks.optional_count("grid_points", grid_points),
+        points=_checks.optional_count("points", points),
+        half_plane=_checks.flag("half_plane", half_plane),
     )
     stopped = fields.pop("stopped")
     result = Result(fields)

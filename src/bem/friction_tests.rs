@@ -2,7 +2,7 @@
 //! friction, the closed form of proportional loading, and the energy of a loop. Tolerances sit
 //! near what was measured (docs/verification.md, "Frictional boundary elements").
 
-use super::friction::*;
+use super::frictional_contact::*;
 use super::frictional_curve::*;
 use super::ElasticBody;
 use crate::models::{spence, PressureLaw, Westergaard};
@@ -57,7 +57,10 @@ fn a_frictionless_curve_is_westergaard() {
         points: 8,
         unload: false,
     };
-    let curve = solve_curve(&problem(&profile, 0.3, 0.0, 8192), &request, &mut |_, _| {}).unwrap();
+    let curve = solve_curve(&problem(&profile, 0.3, 0.0, 8192), &request, &mut |_, _| {
+        std::ops::ControlFlow::Continue(())
+    })
+    .unwrap();
     for inc in &curve.loading {
         let a = outermost_edge(inc);
         let rel = inc.p_over_estar / westergaard_pressure(0.1, a) - 1.0;
@@ -69,7 +72,7 @@ fn a_frictionless_curve_is_westergaard() {
 
 /// One increment from the unloaded state is proportional loading: the stick zone is where the
 /// total tangential displacement vanishes, the self-similar solution of
-/// [`spence::stick_ratio`]. At a/λ = 0.01 on a parabola-like crest (AR 0.001), N = 8192:
+/// [`spence::proportional_stick_ratio`]. At a/λ = 0.01 on a parabola-like crest (AR 0.001), N = 8192:
 /// measured c/a 0.1648 / 0.5553 / 0.7872 against 0.1551 / 0.5517 / 0.7792 (μ 0.2 / 0.5 / 1,
 /// ν 0.3); the stick front is read to half a grid step, 0.006 of a here.
 #[test]
@@ -86,7 +89,7 @@ fn proportional_loading_has_the_self_similar_stick_zone() {
             .increment(westergaard_pressure(0.001, 0.01))
             .unwrap();
         let ratio = inc.stick_half_width_over_lambda / outermost_edge(&inc);
-        let want = spence::stick_ratio(mu, beta);
+        let want = spence::proportional_stick_ratio(mu, beta);
         assert!(
             (ratio - want).abs() < tolerance,
             "μ = {mu}: c/a = {ratio}, closed form {want}"
@@ -108,7 +111,10 @@ fn a_normal_loop_dissipates_only_through_its_steps() {
             points,
             unload: true,
         };
-        solve_curve(&problem(&profile, 0.3, 0.5, 2048), &request, &mut |_, _| {}).unwrap()
+        solve_curve(&problem(&profile, 0.3, 0.5, 2048), &request, &mut |_, _| {
+            std::ops::ControlFlow::Continue(())
+        })
+        .unwrap()
     };
     let coarse = loop_with(8);
     let fine = loop_with(16);

@@ -10,8 +10,9 @@
 //! and the step that passes it is solved again from the same committed state at the pressure
 //! that lands on it (regula falsi, to `1e-9` of the target).
 
-use super::friction::{FrictionalContact, FrictionalProblem, Increment};
+use super::frictional_contact::{FrictionalContact, FrictionalProblem, Increment};
 use super::BemError;
+use std::ops::ControlFlow;
 
 /// Where loading stops.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -98,12 +99,16 @@ pub struct CurveRequest {
 /// The most loading increments past the planned ones before a target is declared out of reach.
 const MAX_EXTRA_STEPS: usize = 400;
 
+/// What sees each committed increment with its branch (`false` loading, `true` unloading);
+/// `Break` stops the curve ([`BemError::Stopped`]).
+pub type OnIncrement<'a> = dyn FnMut(bool, &Increment) -> ControlFlow<()> + 'a;
+
 /// Solves the curve of `problem` as `request` says; `on_increment` sees each converged
-/// increment with its branch (`false` loading, `true` unloading) as soon as it is committed.
+/// increment as soon as it is committed.
 pub fn solve_curve(
     problem: &FrictionalProblem,
     request: &CurveRequest,
-    on_increment: &mut dyn FnMut(bool, &Increment),
+    on_increment: &mut OnIncrement,
 ) -> Result<FrictionalCurve, BemError> {
     check_request(request)?;
     let mut contact = FrictionalContact::new(problem)?;
@@ -129,9 +134,14 @@ pub fn solve_curve(
             trial
         };
         contact.commit(&inc);
-        on_increment(false, &inc);
+        let flow = on_increment(false, &inc);
         p_last = inc.p_over_estar;
         loading.push(inc);
+        if flow.is_break() {
+            return Err(BemError::Stopped {
+                increments: loading.len(),
+            });
+        }
         if reached {
             let unloading = unload(&mut contact, &loading, request.unload, on_increment)?;
             return Ok(FrictionalCurve { loading, unloading });
@@ -266,7 +276,7 @@ fn unload(
     contact: &mut FrictionalContact,
     loading: &[Increment],
     unload: bool,
-    on_increment: &mut dyn FnMut(bool, &Increment),
+    on_increment: &mut OnIncrement,
 ) -> Result<Vec<Increment>, BemError> {
     if !unload {
         return Ok(vec![]);
@@ -275,8 +285,13 @@ fn unload(
     for p in loading.iter().rev().skip(1).map(|i| i.p_over_estar) {
         let inc = contact.increment(p)?;
         contact.commit(&inc);
-        on_increment(true, &inc);
+        let flow = on_increment(true, &inc);
         out.push(inc);
+        if flow.is_break() {
+            return Err(BemError::Stopped {
+                increments: loading.len() + out.len(),
+            });
+        }
     }
     Ok(out)
 }

@@ -62,28 +62,30 @@ impl GridCompliance {
 
     /// `out = K p`.
     pub(super) fn apply(&mut self, p: &[f64], out: &mut [f64]) {
-        self.transform(p, out, |_, w| Complex::new(w, 0.0));
+        self.transform(p, out, |b, _, w| *b *= w);
     }
 
     /// `out = K H v`: each harmonic of `v` scaled by the compliance and by the Hilbert
     /// transform's symbol `−i sign(k)` (`H cos = sin`, `H sin = −cos`; `(H v)(x) = (1/π) PV∫
     /// v(s)/(x − s) ds` on the period), the Nyquist harmonic dropped (its sine vanishes on the
-    /// grid). The half-plane's normal–tangential coupling is `β` times this ([`super::friction`]).
+    /// grid). The half-plane's normal–tangential coupling is `β` times this ([`super::frictional_contact`]).
     pub(super) fn apply_hilbert(&mut self, v: &[f64], out: &mut [f64]) {
         let n = self.weights.len();
-        self.transform(v, out, |k, w| match (2 * k).cmp(&n) {
-            std::cmp::Ordering::Less => Complex::new(0.0, -w),
-            std::cmp::Ordering::Greater => Complex::new(0.0, w),
-            std::cmp::Ordering::Equal => Complex::new(0.0, 0.0),
+        self.transform(v, out, |b, k, w| {
+            *b *= match (2 * k).cmp(&n) {
+                std::cmp::Ordering::Less => Complex::new(0.0, -w),
+                std::cmp::Ordering::Greater => Complex::new(0.0, w),
+                std::cmp::Ordering::Equal => Complex::new(0.0, 0.0),
+            }
         });
     }
 
-    /// `out = F⁻¹ diag(factor(k, w_k)) F v`.
+    /// `out = F⁻¹ diag F v`, each harmonic `b_k` of `F v` scaled in place by `scale(b_k, k, w_k)`.
     fn transform(
         &mut self,
         v: &[f64],
         out: &mut [f64],
-        factor: impl Fn(usize, f64) -> Complex<f64>,
+        scale: impl Fn(&mut Complex<f64>, usize, f64),
     ) {
         for (b, &x) in self.buffer.iter_mut().zip(v) {
             *b = Complex::new(x, 0.0);
@@ -91,7 +93,7 @@ impl GridCompliance {
         self.forward
             .process_with_scratch(&mut self.buffer, &mut self.scratch);
         for (k, (b, &w)) in self.buffer.iter_mut().zip(&self.weights).enumerate() {
-            *b *= factor(k, w);
+            scale(b, k, w);
         }
         self.inverse
             .process_with_scratch(&mut self.buffer, &mut self.scratch);

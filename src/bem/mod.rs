@@ -41,9 +41,9 @@
 
 mod compliance;
 mod edges;
-pub mod friction;
 #[cfg(test)]
 mod friction_tests;
+pub mod frictional_contact;
 pub mod frictional_curve;
 mod grid;
 mod polonsky_keer;
@@ -107,6 +107,9 @@ pub enum BemError {
         reached: f64,
         increments: usize,
     },
+    /// The caller asked the load curve to stop after this many committed increments.
+    #[error("boundary-element solver: stopped by the caller after {increments} increments")]
+    Stopped { increments: usize },
     /// Polonsky–Keer iteration did not meet the tolerance.
     #[error("boundary-element solver did not converge for p̄/E* = {p_over_estar}, N = {points}: {reason} after {iterations} iterations (complementarity residual {residual:.3e} × tol, tol = {tol:e})")]
     NoConvergence {

@@ -68,7 +68,7 @@ pub(super) fn solve(
 
 /// [`solve`] from the initial pressure `p` (non-negative, a positive sum; rescaled to the mean
 /// `p_mean` first): a nearby solution's pressure, so that a sequence of close problems (the
-/// frictional solver's alternation, [`super::friction`]) starts each from the last.
+/// frictional solver's alternation, [`super::frictional_contact`]) starts each from the last.
 pub(super) fn solve_from(
     mut p: Vec<f64>,
     s: &[f64],

@@ -9,8 +9,9 @@ use wavy::defaults;
 use wavy::fe::{Kinematics, MeshLevel, SolveOptions};
 use wavy::profile::Profile;
 use wavy::runner::requests::request_error::RequestError;
-use wavy::runner::requests::solve_outcome::SolveRow;
+use wavy::runner::requests::solve_outcome::{ExtraColumn, SolveRow};
 use wavy::runner::requests::solve_request::{PreparedSolve, SolveRequest};
+use wavy::runner::requests::solver::Solver;
 
 /// Arguments of `wavy solve`.
 #[derive(Debug, Clone, clap::Args)]
@@ -46,8 +47,31 @@ pub struct SolveArgs {
     #[arg(long, default_value_t = defaults::thickness_over_lambda(), allow_hyphen_values = true)]
     pub thickness_over_lambda: f64,
     /// `finite` (finite strain, neo-Hookean: the paper's physics) or `linear` (small strain).
-    #[arg(long, default_value = "finite", value_parser = one_of::<Kinematics>(Kinematics::ALL.map(Kinematics::name)))]
-    pub kinematics: Kinematics,
+    /// [default: finite; linear with --solver bem, the only kinematics it models]
+    #[arg(long, value_parser = one_of::<Kinematics>(Kinematics::ALL.map(Kinematics::name)))]
+    pub kinematics: Option<Kinematics>,
+    /// `fe`: the finite-element solver (a layer on a rigid base, finite or linear kinematics);
+    /// `bem`: the boundary-element solver (linear kinematics; the layer frictionless, or the
+    /// half-plane with --half-plane, with friction; docs/verification.md, "Frictional
+    /// boundary elements"). The columns are the same; with bem, slab_displacement_over_lambda
+    /// holds the rigid approach δ/λ, newton_iterations the normal–tangential passes, and
+    /// active_nodes the contact grid points on [0, λ/2]; with --unload, the loop's work ∮ p̄ dδ
+    /// and the work of friction at the face go to stderr.
+    #[arg(long, default_value = "fe", value_parser = one_of::<Solver>(Solver::ALL.map(Solver::name)))]
+    pub solver: Solver,
+    /// With --solver bem: grid points per wavelength, a power of two [default: 4096, or 64 per
+    /// wavelength of a profile's finest harmonic].
+    #[arg(long)]
+    pub grid_points: Option<usize>,
+    /// With --solver bem: loading points up to the frictionless load of the target (even steps
+    /// of the contact half-width on a crest); friction's extra load takes a few more.
+    /// [default: 40]
+    #[arg(long)]
+    pub points: Option<usize>,
+    /// With --solver bem: the half-plane instead of the layer of --thickness-over-lambda
+    /// (needed for friction).
+    #[arg(long)]
+    pub half_plane: bool,
     /// Mesh: coarse (32×16 elements), default (48×24), fine (72×36), or N elements along the
     /// contact face (4 to 2048; N/2 across the thickness). A --profile given no mesh gets the
     /// coarsest mesh, at least the default, that resolves its finest harmonic (told on stderr).
@@ -116,7 +140,10 @@ impl SolveArgs {
             estar_mpa: self.estar_mpa,
             kappa_over_g: self.kappa_over_g,
             thickness_over_lambda: self.thickness_over_lambda,
-            kinematics: self.kinematics,
+            kinematics: self.kinematics.unwrap_or(match self.solver {
+                Solver::FiniteElement => Kinematics::Finite,
+                Solver::BoundaryElement => Kinematics::Linear,
+            }),
             mesh: self.mesh,
             tolerance: self.tolerance,
             error_estimate: self.error_estimate,
@@ -125,6 +152,10 @@ impl SolveArgs {
             until_contact_fraction: self.until_contact_fraction,
             unload: self.unload,
             max_memory: self.max_memory,
+            solver: self.solver,
+            grid_points: self.grid_points,
+            points: self.points,
+            half_plane: self.half_plane,
         }
     }
 
@@ -138,6 +169,9 @@ impl SolveArgs {
 /// after the converged rows, when the solver cannot go on. The solve is the library's
 /// (`wavy::runner::requests::solve_request`); this layer prints.
 pub fn solve(args: &SolveArgs, out: &mut impl Write) -> Result<ExitCode> {
+    if args.solver == Solver::BoundaryElement {
+        return solve_bem(args, out);
+    }
     if let Some(dir) = &args.vtk {
         wavy::runner::requests::input_checks::vtk_folder(dir)?;
     }
@@ -197,4 +231,46 @@ pub fn solve(args: &SolveArgs, out: &mut impl Write) -> Result<ExitCode> {
         }
         Err(other) => Err(other.into()),
     }
+}
+
+/// `wavy solve --solver bem`: the header, each committed increment as a row, then, with
+/// `--unload`, the loop's energy both ways on stderr.
+fn solve_bem(args: &SolveArgs, out: &mut impl Write) -> Result<ExitCode> {
+    if let Some(dir) = &args.vtk {
+        return Err(RequestError::from(
+            wavy::runner::requests::input_checks::InputError::Refused {
+                flag: "--vtk".into(),
+                value: dir.display().to_string(),
+                reason: "writes the finite-element solver's deformed mesh; the boundary-element solver has none".into(),
+            },
+        )
+        .into());
+    }
+    let prepared = args.request().prepare_bem()?;
+    let extra = prepared.request.extra_column();
+    let header = wavy::fe::CurvePoint::CSV_HEADER;
+    match extra {
+        ExtraColumn::Branch => writeln!(out, "{header},branch")?,
+        _ => writeln!(out, "{header}")?,
+    }
+    let mut write_error = None;
+    let result = prepared.run(&mut |row| {
+        if write_error.is_none() {
+            if let Err(e) = writeln!(out, "{}", row.csv_line(extra)) {
+                write_error = Some(e);
+            }
+        }
+        ControlFlow::Continue(())
+    });
+    if let Some(e) = write_error {
+        return Err(e.into());
+    }
+    let outcome = result?;
+    if let Some(energy) = outcome.cycle_energy {
+        eprintln!(
+            "loop work ∮ p̄ dδ = {:e} E*λ², work of friction at the face = {:e} E*λ² (per unit ridge length and wavelength)",
+            energy.cycle_work_over_estar_lambda2, energy.face_dissipation_over_estar_lambda2
+        );
+    }
+    Ok(ExitCode::SUCCESS)
 }

@@ -469,3 +469,78 @@ fn solve_takes_a_profile() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("order:aspect_ratio"), "{}", stderr(&o));
 }
+
+/// `--solver bem`: the curve's rows with the FE's columns and branches, the loop's energy on
+/// stderr, and what the boundary-element solver does not model refused with exit 2, naming it.
+#[test]
+fn solve_with_the_boundary_element_solver() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = wavy(
+        &[
+            "solve",
+            "--solver",
+            "bem",
+            "--ar",
+            "0.01",
+            "--kappa-over-g",
+            "2.1667",
+            "--mu",
+            "0.5",
+            "--tau-max-mpa",
+            "1000",
+            "--half-plane",
+            "--until-a-over-lambda",
+            "0.2",
+            "--points",
+            "5",
+            "--grid-points",
+            "1024",
+            "--unload",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        format!("{},branch", wavy::fe::CurvePoint::CSV_HEADER)
+    );
+    let rows: Vec<&str> = lines.collect();
+    let loading = rows.iter().filter(|r| r.ends_with(",loading")).count();
+    assert!(loading >= 5 && rows.len() == 2 * loading - 1, "{text}");
+    let last_loading: f64 = rows[loading - 1]
+        .split(',')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!((last_loading - 0.2).abs() < 1e-9, "{last_loading}");
+    assert!(
+        stderr(&o).contains("work of friction at the face"),
+        "{}",
+        stderr(&o)
+    );
+    for (args, says) in [
+        (
+            vec!["--ar", "0.1", "--tau-max-mpa", "0.1"],
+            "modelled on the half-plane only",
+        ),
+        (
+            vec!["--ar", "0.1", "--kinematics", "finite"],
+            "small-strain",
+        ),
+        (vec!["--ar", "0.1", "--mesh", "8"], "--mesh = given"),
+        (
+            vec!["--ar", "0.1", "--grid-points", "1000"],
+            "--grid-points = 1000",
+        ),
+    ] {
+        let o = wavy(
+            &[&["solve", "--solver", "bem"], &args[..]].concat(),
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(says), "{args:?}: {}", stderr(&o));
+    }
+}

@@ -4,6 +4,7 @@
 //! returned as rows ([`solve_outcome`]) or as a [`request_error::RequestError`] whose `Display` is
 //! the command line's message.
 
+pub mod bem_solve;
 pub mod cost_estimate;
 pub mod eval_request;
 pub mod input_checks;
@@ -11,4 +12,5 @@ pub mod profile_mesh;
 pub mod request_error;
 pub mod solve_outcome;
 pub mod solve_request;
+pub mod solver;
 pub mod tolerance_choice;

@@ -86,14 +86,30 @@ const POINT_COLUMNS: [(&str, PointValue); 10] = [
 /// solve that stopped, `RequestError::Stopped`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SolveOutcome {
-    pub mesh: MeshLevel,
-    /// Nodal displacement unknowns of the mesh, two per node: 2·(nx + 1)·(ny + 1).
+    /// The finite-element mesh (`None` for the boundary-element solver).
+    pub mesh: Option<MeshLevel>,
+    /// The boundary-element grid, points per wavelength (`None` for the finite-element solver).
+    pub grid_points: Option<usize>,
+    /// Unknowns: of the mesh, two per node, 2·(nx + 1)·(ny + 1); of the grid, one pressure
+    /// per point.
     pub unknowns: usize,
     pub extra: ExtraColumn,
     /// Loading rows, then (with `unload`) unloading rows, in the order they converged.
     pub rows: Vec<SolveRow>,
     /// The solver's work counters (zero for a solve that stopped).
     pub work: SolveWork,
+    /// A boundary-element loop's energy both ways (`None` otherwise).
+    pub cycle_energy: Option<CycleEnergy>,
+}
+
+/// The energy of a loading–unloading loop, over E* λ² (per unit ridge length, per
+/// wavelength).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CycleEnergy {
+    /// `∮ p̄ dδ`: the work the load does over the loop.
+    pub cycle_work_over_estar_lambda2: f64,
+    /// The work of friction at the face, summed over the increments.
+    pub face_dissipation_over_estar_lambda2: f64,
 }
 
 impl SolveOutcome {

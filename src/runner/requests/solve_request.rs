@@ -17,6 +17,7 @@ use crate::runner::requests::input_checks::{
 use crate::runner::requests::profile_mesh;
 use crate::runner::requests::request_error::RequestError;
 use crate::runner::requests::solve_outcome::{ExtraColumn, SolveOutcome, SolveRow};
+use crate::runner::requests::solver::Solver;
 use crate::runner::sweep::fe_cases::{FeCase, FePhysics};
 use crate::vtk::{write_incomplete_series, write_series, VtkStep};
 use std::ops::ControlFlow;
@@ -58,6 +59,14 @@ pub struct SolveRequest {
     /// Refuse the solve when its estimated peak memory is above this many bytes
     /// ([`CostEstimate::check`]; it is also refused above the memory available).
     pub max_memory: Option<u64>,
+    /// The finite-element solver (default) or the boundary-element one ([`bem_solve`]).
+    pub solver: Solver,
+    /// The boundary-element grid, points per wavelength (`None`: its default).
+    pub grid_points: Option<usize>,
+    /// The boundary-element solver's loading points (`None`: its default).
+    pub points: Option<usize>,
+    /// The boundary-element solver on the half-plane instead of the layer.
+    pub half_plane: bool,
 }
 
 impl SolveRequest {
@@ -80,6 +89,10 @@ impl SolveRequest {
             until_contact_fraction: None,
             unload: false,
             max_memory: None,
+            solver: Solver::FiniteElement,
+            grid_points: None,
+            points: None,
+            half_plane: false,
         }
     }
 
@@ -92,8 +105,44 @@ impl SolveRequest {
         }
     }
 
-    /// Every input checked (in the command line's order), the mesh chosen: the solve to run.
+    /// The column after the curve point's columns.
+    pub fn extra_column(&self) -> ExtraColumn {
+        match (self.error_estimate, self.unload) {
+            (true, _) => ExtraColumn::ErrorEstimate,
+            (false, true) => ExtraColumn::Branch,
+            (false, false) => ExtraColumn::None,
+        }
+    }
+
+    /// Every input checked (in the command line's order), the mesh chosen: the
+    /// finite-element solve to run (a boundary-element request: [`Self::prepare_bem`]).
     pub fn prepare(&self) -> Result<PreparedSolve, RequestError> {
+        self.check_ranges()?;
+        let bem_only = [
+            ("--grid-points", self.grid_points.is_some()),
+            ("--points", self.points.is_some()),
+            ("--half-plane", self.half_plane),
+        ];
+        if self.solver != Solver::FiniteElement {
+            return Err(refused(
+                "--solver",
+                self.solver.name(),
+                "is prepared by prepare_bem",
+            ));
+        }
+        if let Some((flag, _)) = bem_only.iter().find(|(_, given)| *given) {
+            return Err(refused(
+                flag,
+                "given",
+                "belongs to the boundary-element solver (--solver bem); the finite-element solver's points are its contact events",
+            ));
+        }
+        self.prepare_fe()
+    }
+
+    /// The ranges both solvers share, in the command line's order, and the combinations no
+    /// solver takes.
+    pub(crate) fn check_ranges(&self) -> Result<(), RequestError> {
         positive("--ar", self.ar)?;
         positive("--estar-mpa", self.estar_mpa)?;
         positive("--kappa-over-g", self.kappa_over_g)?;
@@ -119,6 +168,19 @@ impl SolveRequest {
                 ));
             }
         }
+        if self.unload && self.error_estimate {
+            return Err(refused(
+                "--unload",
+                true,
+                "cannot be used with --error-estimate",
+            ));
+        }
+        Ok(())
+    }
+
+    /// [`Self::prepare`] once the ranges hold.
+    fn prepare_fe(&self) -> Result<PreparedSolve, RequestError> {
+        let x = self.until_a_over_lambda;
         if !self.finer_harmonics.is_empty() {
             // the measured tiers and their convergence orders are a sinusoid's
             if let Some(t) = self.tolerance {
@@ -141,13 +203,6 @@ impl SolveRequest {
                 "--mesh",
                 mesh,
                 "cannot be used with --tolerance (which chooses the mesh)",
-            ));
-        }
-        if self.unload && self.error_estimate {
-            return Err(refused(
-                "--unload",
-                true,
-                "cannot be used with --error-estimate",
             ));
         }
         let physics = FePhysics {
@@ -257,11 +312,7 @@ impl PreparedSolve {
 
     /// The column after the curve point's columns.
     pub fn extra_column(&self) -> ExtraColumn {
-        match (self.request.error_estimate, self.request.unload) {
-            (true, _) => ExtraColumn::ErrorEstimate,
-            (false, true) => ExtraColumn::Branch,
-            (false, false) => ExtraColumn::None,
-        }
+        self.request.extra_column()
     }
 
     /// The CSV header of `wavy solve`.
@@ -276,11 +327,13 @@ impl PreparedSolve {
 
     fn outcome(&self, rows: Vec<SolveRow>, work: SolveWork) -> SolveOutcome {
         SolveOutcome {
-            mesh: self.mesh(),
+            mesh: Some(self.mesh()),
+            grid_points: None,
             unknowns: self.mesh().unknowns(),
             extra: self.extra_column(),
             rows,
             work,
+            cycle_energy: None,
         }
     }
 
@@ -405,12 +458,22 @@ impl PreparedSolve {
 
 /// The whole request: prepare, the coarser curve if asked, the solve; `on_row` as in
 /// [`PreparedSolve::run`] (also asked, with no row, after each step of the coarser curve), and
-/// `vtk` as there.
+/// `vtk` as there (the finite-element solver's alone).
 pub fn solve(
     request: &SolveRequest,
     vtk: Option<&Path>,
     on_row: &mut dyn FnMut(Option<&SolveRow>) -> ControlFlow<()>,
 ) -> Result<SolveOutcome, RequestError> {
+    if request.solver == Solver::BoundaryElement {
+        if vtk.is_some() {
+            return Err(refused(
+                "--vtk",
+                "given",
+                "writes the finite-element solver's deformed mesh; the boundary-element solver has none",
+            ));
+        }
+        return request.prepare_bem()?.run(&mut |row| on_row(Some(row)));
+    }
     if let Some(dir) = vtk {
         vtk_folder(dir)?;
     }

@@ -126,7 +126,8 @@ pub struct Increment {
     pub contact_fraction: f64,
     /// Contact points on the grid.
     pub contact_points: usize,
-    /// Stick length over λ: the contact points below their slip threshold, one grid step each.
+    /// Stick length over λ: the runs of contact points below their slip threshold, each half a
+    /// grid step beyond its end points and cut at its patch's edges ([`stick_intervals`]).
     pub stick_fraction: f64,
     /// Half-width over λ of the stick zone through the peak (`x = 0`): halfway between its last
     /// stick point and the first slip point, or the patch edge when the whole patch sticks.
@@ -307,16 +308,13 @@ impl FrictionalContact {
         let n = p.len();
         let patches = edges::patches(&p, &gap);
         let contact_fraction = 2.0 * patches.iter().map(|[a, b]| b - a).sum::<f64>();
-        let sticks = |i: usize| p[i] > 0.0 && q[i].abs() < self.law.threshold(p[i]);
-        let stick_points = (0..n).filter(|&i| sticks(i)).count();
-        let central_run = (0..=n / 2).take_while(|&i| sticks(i)).count();
-        let first_patch_end = patches.first().map_or(0.0, |p| p[1]);
-        let stick_half_width = if central_run == 0 {
-            0.0
-        } else if central_run > n / 2 || p[central_run] <= 0.0 {
-            first_patch_end
-        } else {
-            ((central_run as f64 - 0.5) / n as f64).min(first_patch_end)
+        let sticks: Vec<bool> = (0..=n / 2)
+            .map(|i| p[i] > 0.0 && q[i].abs() < self.law.threshold(p[i]))
+            .collect();
+        let stick_runs = stick_intervals(&sticks, &patches, n);
+        let stick_half_width = match stick_runs.first() {
+            Some(&[0.0, end]) => end,
+            _ => 0.0,
         };
         let dissipation = q
             .iter()
@@ -343,13 +341,53 @@ impl FrictionalContact {
             approach_over_lambda: approach,
             contact_fraction,
             patches,
-            stick_fraction: stick_points as f64 / n as f64,
+            stick_fraction: 2.0 * stick_runs.iter().map(|[a, b]| b - a).sum::<f64>(),
             stick_half_width_over_lambda: stick_half_width,
             dissipation_over_estar_lambda2: dissipation,
             passes,
             iterations,
         }
     }
+}
+
+/// The stick intervals in `[0, ½]` of the grid's stick flags on `0 ..= N/2` (`n` = N): each run
+/// of stick points spans half a grid step beyond its end points, cut to the contact patch that
+/// holds it (whose edges lie between grid points), so that a patch that sticks whole sticks
+/// over its contact length exactly.
+fn stick_intervals(sticks: &[bool], patches: &[[f64; 2]], n: usize) -> Vec<[f64; 2]> {
+    let h = 1.0 / n as f64;
+    let last = sticks.len() - 1;
+    let mut out = vec![];
+    let mut i = 0;
+    while i <= last {
+        if !sticks[i] {
+            i += 1;
+            continue;
+        }
+        let first = i;
+        while i < last && sticks[i + 1] {
+            i += 1;
+        }
+        let x = first as f64 * h;
+        let patch = patches
+            .iter()
+            .find(|[a, b]| *a <= x + 0.5 * h && x - 0.5 * h <= *b)
+            .copied()
+            .unwrap_or([0.0, 0.5]);
+        let start = if first == 0 {
+            0.0
+        } else {
+            ((first as f64 - 0.5) * h).max(patch[0])
+        };
+        let end = if i == last {
+            0.5
+        } else {
+            ((i as f64 + 0.5) * h).min(patch[1])
+        };
+        out.push([start, end]);
+        i += 1;
+    }
+    out
 }
 
 /// The ranges of a frictional problem.
@@ -370,7 +408,7 @@ fn check_inputs(problem: &FrictionalProblem, profile: &Profile) -> Result<(), Be
         return invalid("friction coefficient μ", mu, "finite, ≥ 0");
     }
     let tau = problem.law.tau_max_over_estar;
-    if !(tau >= 0.0) {
+    if tau.is_nan() || tau < 0.0 {
         return invalid("shear strength τ_max/E*", tau, "≥ 0 (∞ allowed)");
     }
     let tol = problem.tol;
