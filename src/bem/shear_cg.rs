@@ -1,20 +1,20 @@
 //! The tangential half of a frictional increment: the shear traction `q` on the grid that
-//! minimises `½ qᵀ K q + qᵀ b` subject to `|q_i| ≤ f_i`, by a conjugate gradient on the points
-//! off their bound, projected onto the box (the bound-constrained counterpart of
-//! [`super::polonsky_keer`]).
+//! minimises `½ qᵀ K q + qᵀ b` subject to `|q_i| ≤ f_i`, by a primal–dual active set (Hintermüller,
+//! Ito & Kunisch, SIAM J. Optim. 13, 865, 2002) whose linear solves are conjugate gradients on
+//! the points that stick.
 //!
 //! The gradient `K q + b` is the increment of the surface's tangential displacement over the
 //! increment, the slip against the rigid surface (which does not move sideways: the profile is
-//! even, so `q` is odd and has no resultant). Its optimality conditions are the
-//! Coulomb–Orowan law of the increment: where `|q_i| < f_i` the point sticks (no slip); where
-//! `q_i = ±f_i` it slips against the traction (`q_i · slip_i ≤ 0`); `f_i = 0` off the contact
-//! keeps `q = 0` there. `K` is positive definite on zero-mean grid functions, so the minimiser
-//! is unique.
+//! even, so `q` is odd and has no resultant). Its optimality conditions are the Coulomb–Orowan
+//! law of the increment: where `|q_i| < f_i` the point sticks (no slip); where `q_i = ±f_i` it
+//! slips against the traction (`q_i · slip_i ≤ 0`); `f_i = 0` off the contact keeps `q = 0`
+//! there. `K` is positive definite on zero-mean grid functions, so the minimiser is unique.
 //!
-//! One iteration: the points that may move (inside their bound, or on it with the gradient
-//! pointing inside) take a conjugate-gradient step with the exact line search; values beyond a
-//! bound are set to it, which restarts the conjugacy. Stopping rule: the largest slip of a point
-//! that may move is at most `slip_tol` (the optimality conditions hold to that tolerance).
+//! One outer iteration: with every point's status fixed (stuck, or slipping at `+f` or `−f`),
+//! the stuck points' shear solves `slip = 0` there (conjugate gradients with the slipping and
+//! free points' shear held); then every status is decided again at once: a stuck point whose
+//! shear exceeds its bound slips at it, a slipping point whose slip turned against its traction
+//! sticks. It ends when no status changes and the conditions hold to `slip_tol`.
 
 use super::grid::GridCompliance;
 use super::polonsky_keer::Stalled;
@@ -25,11 +25,26 @@ pub(super) struct ShearSolution {
     pub(super) shear: Vec<f64>,
     /// The slip of the increment, `K q + b` (λ).
     pub(super) slip: Vec<f64>,
+    /// Conjugate-gradient iterations over all outer iterations.
     pub(super) iterations: usize,
 }
 
-/// Solves the box-constrained problem of the module doc from `q` (projected onto the box
-/// first). `bound` is `f ≥ 0` (E*), `b` the slip at `q = 0` (λ).
+/// A point's status in the active set.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Status {
+    /// Off the contact (`f = 0`): `q = 0`.
+    Free,
+    /// Sticking: `q` unknown, slip 0.
+    Stuck,
+    /// Slipping with `q = +f` (`+1`) or `q = −f` (`−1`).
+    Slipping(i8),
+}
+
+/// The most outer iterations (each a full set of status changes).
+const MAX_OUTER: usize = 200;
+
+/// Solves the box-constrained problem of the module doc from `q` (its statuses read from it:
+/// at or beyond a bound, slipping there). `bound` is `f ≥ 0` (E*), `b` the slip at `q = 0` (λ).
 pub(super) fn solve(
     mut q: Vec<f64>,
     b: &[f64],
@@ -39,126 +54,151 @@ pub(super) fn solve(
     max_iterations: usize,
 ) -> Result<ShearSolution, Stalled> {
     let n = b.len();
-    for (qi, &fi) in q.iter_mut().zip(bound) {
-        *qi = qi.clamp(-fi, fi);
-    }
+    let mut status: Vec<Status> = q
+        .iter()
+        .zip(bound)
+        .map(|(&qi, &f)| initial_status(qi, f))
+        .collect();
     let mut slip = vec![0.0; n];
-    let mut direction = vec![0.0; n];
-    let mut k_direction = vec![0.0; n];
-    let mut free = vec![false; n];
-    let mut last_norm = 1.0;
-    let mut conjugate = false;
-    let mut residual = f64::INFINITY;
-    for iteration in 0..max_iterations {
+    let mut iterations = 0;
+    for _ in 0..MAX_OUTER {
+        hold(&mut q, &status, bound);
+        iterations +=
+            stick_solve(&mut q, &status, b, k_op, slip_tol, max_iterations).map_err(|s| {
+                Stalled {
+                    iterations: iterations + s.iterations,
+                    ..s
+                }
+            })?;
         k_op.apply(&q, &mut slip);
         slip.iter_mut().zip(b).for_each(|(s, &bi)| *s += bi);
-        let changed = classify(&mut free, &q, &slip, bound);
-        residual = max_free_slip(&free, &slip);
-        if !residual.is_finite() {
-            break;
-        }
-        if residual <= slip_tol {
+        let changed = update_status(&mut status, &q, &slip, bound, slip_tol);
+        if !changed {
             return Ok(ShearSolution {
                 shear: q,
                 slip,
-                iterations: iteration,
+                iterations,
             });
         }
-        last_norm = conjugate_direction(
-            &mut direction,
-            &slip,
-            &free,
-            conjugate && !changed,
-            last_norm,
-        );
-        k_op.apply(&direction, &mut k_direction);
-        let step = exact_step(&direction, &slip, &k_direction, &free);
-        conjugate = !step_and_project(&mut q, &direction, step, bound);
     }
     Err(Stalled {
-        iterations: max_iterations,
-        residual: residual / slip_tol,
-        reason: if residual.is_finite() {
-            "iteration cap reached (shear)"
-        } else {
-            "non-finite slip (shear)"
-        },
+        iterations,
+        residual: f64::NAN,
+        reason: "the stick–slip statuses kept changing (shear)",
     })
 }
 
-/// Marks the points that may move: inside their bound, or on it with the slip pointing back
-/// inside (`q_i = f_i > 0` and slip > 0, the descent `−slip` lowering `q_i`; likewise below).
-/// Returns whether the set changed.
-fn classify(free: &mut [bool], q: &[f64], slip: &[f64], bound: &[f64]) -> bool {
+/// The status a shear `q` under the bound `f` starts from.
+fn initial_status(q: f64, f: f64) -> Status {
+    if f <= 0.0 {
+        Status::Free
+    } else if q >= f {
+        Status::Slipping(1)
+    } else if q <= -f {
+        Status::Slipping(-1)
+    } else {
+        Status::Stuck
+    }
+}
+
+/// Sets the shear the statuses prescribe: 0 off the contact, `±f` where slipping.
+fn hold(q: &mut [f64], status: &[Status], bound: &[f64]) {
+    for ((qi, s), &f) in q.iter_mut().zip(status).zip(bound) {
+        match s {
+            Status::Free => *qi = 0.0,
+            Status::Slipping(sign) => *qi = f64::from(*sign) * f,
+            Status::Stuck => {}
+        }
+    }
+}
+
+/// The stuck points' shear that makes their slip vanish, the others held: conjugate gradients
+/// on `K_SS q_S = −(b + K q_held)_S` from the current values, to `slip_tol` in the largest
+/// stuck slip. Returns the iterations.
+fn stick_solve(
+    q: &mut [f64],
+    status: &[Status],
+    b: &[f64],
+    k_op: &mut GridCompliance,
+    slip_tol: f64,
+    max_iterations: usize,
+) -> Result<usize, Stalled> {
+    let n = q.len();
+    let stuck: Vec<bool> = status.iter().map(|s| *s == Status::Stuck).collect();
+    let mut residual = vec![0.0; n];
+    k_op.apply(q, &mut residual);
+    // r = −slip on the stuck points (the descent direction), 0 elsewhere
+    for i in 0..n {
+        residual[i] = if stuck[i] { -(residual[i] + b[i]) } else { 0.0 };
+    }
+    let mut direction = residual.clone();
+    let mut k_direction = vec![0.0; n];
+    let mut norm = dot(&residual, &residual);
+    let mut largest = max_abs(&residual);
+    for iteration in 0..max_iterations {
+        if largest <= slip_tol {
+            return Ok(iteration);
+        }
+        k_op.apply(&direction, &mut k_direction);
+        k_direction
+            .iter_mut()
+            .zip(&stuck)
+            .for_each(|(v, &s)| *v = if s { *v } else { 0.0 });
+        let step = norm / dot(&direction, &k_direction);
+        if !step.is_finite() {
+            break;
+        }
+        for i in 0..n {
+            q[i] += step * direction[i];
+            residual[i] -= step * k_direction[i];
+        }
+        let next = dot(&residual, &residual);
+        let ratio = next / norm;
+        norm = next;
+        for i in 0..n {
+            direction[i] = residual[i] + ratio * direction[i];
+        }
+        largest = max_abs(&residual);
+    }
+    Err(Stalled {
+        iterations: max_iterations,
+        residual: largest / slip_tol,
+        reason: "iteration cap reached (shear of the stick zone)",
+    })
+}
+
+/// Decides every status again from the new shear and slip (module doc; a slip against the
+/// traction within `slip_tol` is round-off and keeps the point slipping); returns whether any
+/// changed.
+fn update_status(
+    status: &mut [Status],
+    q: &[f64],
+    slip: &[f64],
+    bound: &[f64],
+    slip_tol: f64,
+) -> bool {
     let mut changed = false;
     for i in 0..q.len() {
         let f = bound[i];
-        let may_move = f > 0.0
-            && (q[i].abs() < f || (q[i] >= f && slip[i] > 0.0) || (q[i] <= -f && slip[i] < 0.0));
-        changed |= may_move != free[i];
-        free[i] = may_move;
+        let next = match status[i] {
+            Status::Free => Status::Free,
+            Status::Stuck if q[i] > f => Status::Slipping(1),
+            Status::Stuck if q[i] < -f => Status::Slipping(-1),
+            Status::Stuck => Status::Stuck,
+            // slipping at +f needs slip ≤ 0, at −f slip ≥ 0
+            Status::Slipping(sign) if f64::from(sign) * slip[i] > slip_tol => Status::Stuck,
+            Status::Slipping(sign) => Status::Slipping(sign),
+        };
+        changed |= next != status[i];
+        status[i] = next;
     }
     changed
 }
 
-/// The largest `|slip|` among the points that may move (0 when none may).
-fn max_free_slip(free: &[bool], slip: &[f64]) -> f64 {
-    free.iter()
-        .zip(slip)
-        .filter(|(&f, _)| f)
-        .fold(0.0, |m: f64, (_, s)| m.max(s.abs()))
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-/// `t = slip + γ t` on the points that may move (zero elsewhere; `γ = 0` unless `conjugate`);
-/// returns the squared norm of the slip there, the next call's `last_norm`.
-fn conjugate_direction(
-    t: &mut [f64],
-    slip: &[f64],
-    free: &[bool],
-    conjugate: bool,
-    last_norm: f64,
-) -> f64 {
-    let norm: f64 = free
-        .iter()
-        .zip(slip)
-        .filter(|(&f, _)| f)
-        .map(|(_, s)| s * s)
-        .sum();
-    let gamma = if conjugate { norm / last_norm } else { 0.0 };
-    for i in 0..t.len() {
-        t[i] = if free[i] { slip[i] + gamma * t[i] } else { 0.0 };
-    }
-    norm
-}
-
-/// The minimising step along `−t`: `(slip·t)/(t·K t)`, or 0 when that is not finite and
-/// positive (then the projection has nothing to do and the next iteration restarts).
-fn exact_step(t: &[f64], slip: &[f64], k_t: &[f64], free: &[bool]) -> f64 {
-    let (mut num, mut den) = (0.0, 0.0);
-    for i in 0..t.len() {
-        if free[i] {
-            num += slip[i] * t[i];
-            den += k_t[i] * t[i];
-        }
-    }
-    let step = num / den;
-    if step.is_finite() && step > 0.0 {
-        step
-    } else {
-        0.0
-    }
-}
-
-/// `q ← clamp(q − step·t, −f, f)`; returns whether any value was clamped.
-fn step_and_project(q: &mut [f64], t: &[f64], step: f64, bound: &[f64]) -> bool {
-    let mut clamped = false;
-    for i in 0..q.len() {
-        if t[i] != 0.0 {
-            let stepped = q[i] - step * t[i];
-            let f = bound[i];
-            clamped |= stepped.abs() > f;
-            q[i] = stepped.clamp(-f, f);
-        }
-    }
-    clamped
+fn max_abs(a: &[f64]) -> f64 {
+    a.iter().fold(0.0, |m: f64, x| m.max(x.abs()))
 }
