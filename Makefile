@@ -69,12 +69,14 @@ bless:
 	INSTA_UPDATE=always $(CARGO) test --release --locked --test scenes
 	@echo "changed by bless:"; git status --short -- figures expected tests/snapshots
 
-## Fails, naming the files, when a committed figure or golden table is not what the code computes now
-## (CI runs it after make test).
+## Fails, naming the files, when a committed figure or golden table is not what the code computes now,
+## or when no spec produces it any more (CI runs it after make test). reproduce's "wrote …" lines, kept in
+## target/reproduce.out, are what the specs produce.
 stale:
 	$(CARGO) build --release --locked
-	$(CARGO) run --release --locked --quiet -- reproduce
-	@bash .ci/stale-figures
+	$(CARGO) run --release --locked --quiet -- reproduce > target/reproduce.out
+	@cat target/reproduce.out
+	@bash .ci/stale-figures target/reproduce.out
 
 ## The frictional-speed table (docs/performance.md): per default-mesh curve the median wall time of 3 runs,
 ## DOFs, load steps, Newton iterations, factorisations; frictional/frictionless ratio per AR; the Fig. 3 sweep from
