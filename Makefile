@@ -39,14 +39,15 @@ python-test:
 	PATH="$(CURDIR)/$(VENV)/bin:$$PATH" $(VENV)/bin/python -m pip install --quiet --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python
 	cd python/tests && ../../$(VENV)/bin/python -m pytest -q -p no:cacheprovider
 
-## Formatting of every Rust file (rustfmt on each file too, so that no module escapes `cargo fmt`),
-## then clippy over every target of the workspace, the Python bindings included.
-RUST_FILES = $(shell git ls-files --cached --others --exclude-standard '*.rs' 2>/dev/null || find src tests benches examples python/src -name '*.rs')
+## Formatting of every Rust file git tracks (rustfmt on each file too, so that no module escapes
+## `cargo fmt`; an untracked scratch file is not the project's), then clippy over every target of the
+## workspace, the Python bindings included.
+RUST_FILES = $(shell git ls-files '*.rs' 2>/dev/null || find src tests benches examples python/src -name '*.rs')
 lint: fmt-check clippy
 
 fmt-check:
 	$(CARGO) fmt --all --check
-	@echo 'rustfmt --check --edition 2021 <every Rust file git knows>'
+	@echo 'rustfmt --check --edition 2021 <every Rust file git tracks>'
 	@rustfmt --check --edition 2021 $(RUST_FILES)
 
 clippy:
