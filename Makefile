@@ -1,7 +1,7 @@
 # wavy — every figure and number from experiments/*.toml.
 # `make reproduce` needs cargo (the toolchain is pinned in rust-toolchain.toml; crates come from crates.io);
-# `make test` also needs python3 with its venv module (the Python package's tests install maturin, pytest and
-# numpy from PyPI into target/python-venv).
+# `make test` also needs python3 with its venv module (the Python package's tests install the tools pinned in
+# python/requirements-test.txt from PyPI into target/python-venv).
 
 CARGO ?= cargo
 export CARGO_TERM_COLOR ?= never
@@ -25,17 +25,17 @@ test: lint
 	INSTA_UPDATE=no $(CARGO) test --release --locked --tests
 	$(MAKE) --no-print-directory python-test
 
-## The Python package (python/, docs/python.md): a virtual environment in target/ with maturin, pytest,
-## numpy, numpydoc (the docstring checks) and dask[distributed] (the sweep on a LocalCluster) from PyPI,
-## the wheel built (release, reusing target/) and installed, then pytest, which compares the package
+## The Python package (python/, docs/python.md): a virtual environment in target/ with the tools of
+## python/requirements-test.txt from PyPI (maturin, pytest, numpy, pandas for Result.to_pandas, numpydoc
+## for the docstring checks, dask[distributed] for the sweep on a LocalCluster), the wheel built
+## (release, reusing target/) and installed, then pytest, which compares the package
 ## with the binary built here. Exit 5 (no tests collected) fails like any other.
 PYTHON ?= python3
 VENV ?= target/python-venv
 python-test:
 	$(CARGO) build --release --locked
 	test -x $(VENV)/bin/python || $(PYTHON) -m venv $(VENV)
-	$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check "maturin>=1.16,<1.17" pytest numpy \
-		"numpydoc>=1.8,<2" "dask[distributed]>=2024.8,<2027"
+	$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check -r python/requirements-test.txt
 	PATH="$(CURDIR)/$(VENV)/bin:$$PATH" $(VENV)/bin/python -m pip install --quiet --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python
 	cd python/tests && ../../$(VENV)/bin/python -m pytest -q -p no:cacheprovider
 
