@@ -218,7 +218,9 @@ fn read_csv(rel: &str) -> Result<Csv, String> {
     match anchor {
         None => parse_csv(rel, &text),
         Some(anchor) if file.ends_with(".md") => markdown_table(rel, &text, anchor),
-        Some(_) => Err(format!("{rel}: `#anchor` names a table of a Markdown file only")),
+        Some(_) => Err(format!(
+            "{rel}: `#anchor` names a table of a Markdown file only"
+        )),
     }
 }
 
@@ -243,7 +245,11 @@ fn markdown_table(rel: &str, text: &str, anchor: &str) -> Result<Csv, String> {
         .take_while(|l| !l.starts_with('#'))
         .skip_while(|l| !l.trim_start().starts_with('|'))
         .take_while(|l| l.trim_start().starts_with('|'));
-    let header = table_cells(table.next().ok_or(format!("{rel}: no table under the heading"))?);
+    let header = table_cells(
+        table
+            .next()
+            .ok_or(format!("{rel}: no table under the heading"))?,
+    );
     let rows = table.skip(1).map(table_cells).collect();
     Ok(Csv { header, rows })
 }
@@ -991,10 +997,7 @@ fn check_condition(csv: &Csv, condition: &str) -> Result<Option<String>, String>
             _ => x > y,
         };
         if !holds {
-            return Ok(Some(format!(
-                "`{}` is false: {x} {op} {y}",
-                clause.trim()
-            )));
+            return Ok(Some(format!("`{}` is false: {x} {op} {y}", clause.trim())));
         }
     }
     Ok(None)
@@ -1163,7 +1166,10 @@ fn readme_is_a_first_page() {
         bytes <= README_MAX_BYTES,
         "README.md is {bytes} bytes without its HTML comments, more than {README_MAX_BYTES}"
     );
-    assert_eq!(visible_bytes("ab<!-- = x: {y:v} -->c<!-- ? x: 1 < 2 -->"), 3);
+    assert_eq!(
+        visible_bytes("ab<!-- = x: {y:v} -->c<!-- ? x: 1 < 2 -->"),
+        3
+    );
     assert_eq!(visible_bytes("a<!-- unclosed"), 1);
 }
 
