@@ -1,7 +1,7 @@
 # wavy — every figure and number from experiments/*.toml.
 # `make reproduce` needs cargo (the toolchain is pinned in rust-toolchain.toml; crates come from crates.io);
-# `make test` also needs python3 with its venv module (the Python package's tests install maturin, pytest and
-# numpy from PyPI into target/python-venv).
+# `make test` also needs python3 with its venv module (the Python package's tests install the tools pinned in
+# python/requirements-test.txt from PyPI into target/python-venv).
 
 CARGO ?= cargo
 export CARGO_TERM_COLOR ?= never
@@ -25,28 +25,29 @@ test: lint
 	INSTA_UPDATE=no $(CARGO) test --release --locked --tests
 	$(MAKE) --no-print-directory python-test
 
-## The Python package (python/, docs/python.md): a virtual environment in target/ with maturin, pytest,
-## numpy, numpydoc (the docstring checks) and dask[distributed] (the sweep on a LocalCluster) from PyPI,
-## the wheel built (release, reusing target/) and installed, then pytest, which compares the package
+## The Python package (python/, docs/python.md): a virtual environment in target/ with the tools of
+## python/requirements-test.txt from PyPI (maturin, pytest, numpy, pandas for Result.to_pandas, numpydoc
+## for the docstring checks, dask[distributed] for the sweep on a LocalCluster), the wheel built
+## (release, reusing target/) and installed, then pytest, which compares the package
 ## with the binary built here. Exit 5 (no tests collected) fails like any other.
 PYTHON ?= python3
 VENV ?= target/python-venv
 python-test:
 	$(CARGO) build --release --locked
 	test -x $(VENV)/bin/python || $(PYTHON) -m venv $(VENV)
-	$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check "maturin>=1.16,<1.17" pytest numpy \
-		"numpydoc>=1.8,<2" "dask[distributed]>=2024.8,<2027"
+	$(VENV)/bin/python -m pip install --quiet --disable-pip-version-check -r python/requirements-test.txt
 	PATH="$(CURDIR)/$(VENV)/bin:$$PATH" $(VENV)/bin/python -m pip install --quiet --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python
 	cd python/tests && ../../$(VENV)/bin/python -m pytest -q -p no:cacheprovider
 
-## Formatting of every Rust file (rustfmt on each file too, so that no module escapes `cargo fmt`),
-## then clippy over every target of the workspace, the Python bindings included.
-RUST_FILES = $(shell git ls-files --cached --others --exclude-standard '*.rs' 2>/dev/null || find src tests benches examples python/src -name '*.rs')
+## Formatting of every Rust file git tracks (rustfmt on each file too, so that no module escapes
+## `cargo fmt`; an untracked scratch file is not the project's), then clippy over every target of the
+## workspace, the Python bindings included.
+RUST_FILES = $(shell git ls-files '*.rs' 2>/dev/null || find src tests benches examples python/src -name '*.rs')
 lint: fmt-check clippy
 
 fmt-check:
 	$(CARGO) fmt --all --check
-	@echo 'rustfmt --check --edition 2021 <every Rust file git knows>'
+	@echo 'rustfmt --check --edition 2021 <every Rust file git tracks>'
 	@rustfmt --check --edition 2021 $(RUST_FILES)
 
 clippy:
@@ -69,12 +70,14 @@ bless:
 	INSTA_UPDATE=always $(CARGO) test --release --locked --test scenes
 	@echo "changed by bless:"; git status --short -- figures expected tests/snapshots
 
-## Fails, naming the files, when a committed figure or golden table is not what the code computes now
-## (CI runs it after make test).
+## Fails, naming the files, when a committed figure or golden table is not what the code computes now,
+## or when no spec produces it any more (CI runs it after make test). reproduce's "wrote …" lines, kept in
+## target/reproduce.out, are what the specs produce.
 stale:
 	$(CARGO) build --release --locked
-	$(CARGO) run --release --locked --quiet -- reproduce
-	@bash .ci/stale-figures
+	$(CARGO) run --release --locked --quiet -- reproduce > target/reproduce.out
+	@cat target/reproduce.out
+	@bash .ci/stale-figures target/reproduce.out
 
 ## The frictional-speed table (docs/performance.md): per default-mesh curve the median wall time of 3 runs,
 ## DOFs, load steps, Newton iterations, factorisations; frictional/frictionless ratio per AR; the Fig. 3 sweep from

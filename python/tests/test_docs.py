@@ -120,3 +120,27 @@ def test_the_stubs_ship_and_match_the_runtime_signatures():
     result = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == "Result")
     annotated = {n.target.id for n in result.body if isinstance(n, ast.AnnAssign)}
     assert set(wavy.COLUMNS) | {"error_estimate"} | set(_result.METADATA) <= annotated
+
+
+def test_the_solve_call_in_python_md_shows_the_defaults():
+    # docs/python.md shows one `wavy.solve(ar=…, …)` call with every other argument at its default
+    text = (Path(__file__).parents[2] / "docs" / "python.md").read_text(encoding="utf-8")
+    start = text.index("r = wavy.solve(ar=")
+    call = ast.parse(text[start:text.index(")", start) + 1]).body[0].value
+    shown = {k.arg: ast.literal_eval(k.value) for k in call.keywords}
+    signature = inspect.signature(wavy.solve).parameters
+    assert list(shown) == list(signature)
+    for name, value in shown.items():
+        if name != "ar":
+            assert value == signature[name].default, (name, value, signature[name].default)
+
+
+def test_the_build_backend_takes_the_tested_maturin():
+    # python/requirements-test.txt pins the test tools; pyproject.toml's build requirement is its maturin
+    python = Path(__file__).parents[1]
+    pins = [line.split("#")[0].strip()
+            for line in (python / "requirements-test.txt").read_text(encoding="utf-8").splitlines()]
+    maturin = [p for p in pins if p.startswith("maturin")]
+    build = re.search(r'^requires = \["([^"]+)"\]', (python / "pyproject.toml").read_text(encoding="utf-8"),
+                      re.MULTILINE)
+    assert len(maturin) == 1 and build and build.group(1) == maturin[0], (maturin, build)

@@ -101,7 +101,7 @@ def test_a_sweep_with_a_diverging_case_completes_on_process_pool_executor():
 
 
 def test_the_dask_example_sweeps_on_a_local_cluster_of_two_worker_processes():
-    pytest.importorskip("dask.distributed")
+    import dask.distributed  # noqa: F401  a test tool (python/requirements-test.txt): no skip
     reference = expected()
     p = subprocess.run(
         [sys.executable, str(EXAMPLE), "--workers", "2", "--ar", *map(str, CASES),

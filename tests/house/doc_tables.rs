@@ -74,9 +74,32 @@
 //! sentence usually carries a claim, which the author rereads. Each doc in `MUST_HAVE_INLINE`
 //! holds at least one.
 //!
+//! # Marking a finding
+//!
+//! A sentence that compares numbers (a finding: "A fits best", "the error falls as n grows") carries
+//! `<!-- ? PATH: CONDITION -->`, anywhere in it. CONDITION is one comparison or several joined by
+//! `&&`, each `OPERAND OP OPERAND` with OP one of `<`, `<=`, `>`, `>=`, `==`; an OPERAND is a
+//! number, an expression as above (`column[filter]`, `min`, `max`, `count`, `rel`) evaluated on
+//! every row of the CSV, or `NUMBER * EXPRESSION`:
+//!
+//! ```text
+//! refitted, bracket-2x fits best<!-- ? figures/table1_refit_fit.csv:
+//!   mse_ours[reading=bracket-2x] == min(mse_ours) -->
+//! ```
+//!
+//! Every comparison must hold; a failure names the doc, the comment's line, the comparison and the
+//! two values. Every bullet of the README's "What we found" holds at least one, so that a finding
+//! cannot change its meaning, or be added, without saying what it rests on.
+//!
+//! # A table of a Markdown doc as the CSV
+//!
+//! PATH may be `DOC.md#anchor`: the first table under the heading with that anchor, its header cells
+//! the column names (`docs/performance.md#current-values`, the durations a newcomer is told).
+//!
 //! # Also checked
 //!
-//! README.md ≤ 10 240 bytes; every relative link `[…](path)` or `![…](path)` in README.md,
+//! README.md ≤ 12 288 bytes without its HTML comments (what a reader sees; the markers are free);
+//! every relative link `[…](path)` or `![…](path)` in README.md,
 //! CONTRIBUTING.md and docs/*.md points to a file or folder inside the repository, and its
 //! `#anchor`, if any (`#anchor` alone: the same doc), is the slug of a heading of the target
 //! Markdown file, by GitHub's rule (the heading's text lower-cased, every character but letters,
@@ -87,7 +110,9 @@ use std::collections::BTreeSet;
 use std::fs;
 use std::path::{Component, Path, PathBuf};
 
-const README_MAX_BYTES: usize = 10_240;
+/// The README's length as read (HTML comments left out, so that a marker costs nothing): a first
+/// page, the depth in docs/.
+const README_MAX_BYTES: usize = 12_288;
 
 /// CSVs restated by a doc table; each must be named by at least one marker (so that the test
 /// never passes because the markers were deleted).
@@ -184,9 +209,49 @@ fn parse_csv_line(line: &str) -> Vec<String> {
 }
 
 fn read_csv(rel: &str) -> Result<Csv, String> {
-    let path = inside_repo(Path::new(""), rel).ok_or(format!("{rel}: outside the repository"))?;
+    let (file, anchor) = match rel.split_once('#') {
+        Some((file, anchor)) => (file, Some(anchor)),
+        None => (rel, None),
+    };
+    let path = inside_repo(Path::new(""), file).ok_or(format!("{rel}: outside the repository"))?;
     let text = fs::read_to_string(root().join(path)).map_err(|e| format!("{rel}: {e}"))?;
-    parse_csv(rel, &text)
+    match anchor {
+        None => parse_csv(rel, &text),
+        Some(anchor) if file.ends_with(".md") => markdown_table(rel, &text, anchor),
+        Some(_) => Err(format!(
+            "{rel}: `#anchor` names a table of a Markdown file only"
+        )),
+    }
+}
+
+/// The first table under the heading whose anchor is `anchor` (before the next heading), as a CSV:
+/// its header cells are the column names, its body rows the rows.
+fn markdown_table(rel: &str, text: &str, anchor: &str) -> Result<Csv, String> {
+    let mut seen = BTreeSet::new();
+    let mut lines = text.lines();
+    let mut found = false;
+    for line in lines.by_ref() {
+        if let Some(slug) = heading_slug(line, &mut seen) {
+            if slug == anchor {
+                found = true;
+                break;
+            }
+        }
+    }
+    if !found {
+        return Err(format!("{rel}: no heading whose anchor is `#{anchor}`"));
+    }
+    let mut table = lines
+        .take_while(|l| !l.starts_with('#'))
+        .skip_while(|l| !l.trim_start().starts_with('|'))
+        .take_while(|l| l.trim_start().starts_with('|'));
+    let header = table_cells(
+        table
+            .next()
+            .ok_or(format!("{rel}: no table under the heading"))?,
+    );
+    let rows = table.skip(1).map(table_cells).collect();
+    Ok(Csv { header, rows })
 }
 
 fn parse_csv(rel: &str, text: &str) -> Result<Csv, String> {
@@ -832,16 +897,280 @@ fn a_wrong_inline_number_fails() {
     assert!(failures[0].contains("selects 3 CSV rows"), "{failures:?}");
 }
 
+// ---------------------------------------------------------------- findings
+
+/// A finding marker `<!-- ? PATH: CONDITION -->`: its 1-based line, PATH and CONDITION.
+struct FindingMarker {
+    line: usize,
+    csv: String,
+    condition: String,
+}
+
+const FINDING_OPEN: &str = "<!-- ?";
+
+fn finding_markers(text: &str) -> Result<Vec<FindingMarker>, String> {
+    let fenced = fenced_ranges(text);
+    let mut found = Vec::new();
+    let mut from = 0;
+    while let Some(found_at) = text[from..].find(FINDING_OPEN) {
+        let start = from + found_at;
+        let line = text[..start].matches('\n').count() + 1;
+        let body_start = start + FINDING_OPEN.len();
+        let Some(end) = text[body_start..].find("-->") else {
+            return Err(format!("line {line}: `{FINDING_OPEN}` without `-->`"));
+        };
+        from = body_start + end + 3;
+        if fenced.iter().any(|r| r.contains(&start)) {
+            continue;
+        }
+        let body = text[body_start..body_start + end]
+            .split_whitespace()
+            .collect::<Vec<_>>()
+            .join(" ");
+        let Some((csv, condition)) = body.split_once(':') else {
+            return Err(format!(
+                "line {line}: marker `{body}` is not `? PATH: CONDITION`"
+            ));
+        };
+        found.push(FindingMarker {
+            line,
+            csv: csv.trim().to_string(),
+            condition: condition.trim().to_string(),
+        });
+    }
+    Ok(found)
+}
+
+/// The comparison operators of a condition, the two-character ones first.
+const COMPARISONS: [&str; 5] = ["<=", ">=", "==", "<", ">"];
+
+/// `left OP right` split at its operator outside `[…]` and `(…)` (where filters hold `=`).
+fn split_comparison(text: &str) -> Result<(&str, &'static str, &str), String> {
+    let mut depth = 0i32;
+    for (i, c) in text.char_indices() {
+        match c {
+            '[' | '(' => depth += 1,
+            ']' | ')' => depth -= 1,
+            _ if depth == 0 => {
+                if let Some(op) = COMPARISONS.iter().find(|op| text[i..].starts_with(**op)) {
+                    return Ok((&text[..i], op, &text[i + op.len()..]));
+                }
+            }
+            _ => {}
+        }
+    }
+    Err(format!("`{text}` has no comparison (<, <=, >, >=, ==)"))
+}
+
+/// An operand: a number, or an expression of the tables (`column[filter]`, `min(…)`, `max(…)`,
+/// `count(…)`, `rel(…; …)`) evaluated on every row of the CSV, optionally `NUMBER * EXPR`.
+fn operand(csv: &Csv, text: &str) -> Result<f64, String> {
+    let text = text.trim();
+    if let Ok(x) = text.parse::<f64>() {
+        return Ok(x);
+    }
+    let (factor, expr) = match text.split_once('*') {
+        Some((f, e)) if f.trim().parse::<f64>().is_ok() => {
+            (f.trim().parse::<f64>().unwrap_or(1.0), e)
+        }
+        _ => (1.0, text),
+    };
+    let all: Vec<&Vec<String>> = csv.rows.iter().collect();
+    match evaluate(csv, &all, expr)? {
+        Some(Value::Number(x)) => Ok(factor * x),
+        Some(Value::Text(t)) => Ok(factor * number(&t, expr)?),
+        None => Err(format!("`{expr}` is empty")),
+    }
+}
+
+/// Whether every `A OP B` of a condition (joined by `&&`) holds: `Ok(None)` when it does, else the
+/// first comparison that does not, with the values it compared.
+fn check_condition(csv: &Csv, condition: &str) -> Result<Option<String>, String> {
+    for clause in condition.split("&&") {
+        let (a, op, b) = split_comparison(clause.trim())?;
+        let (x, y) = (operand(csv, a)?, operand(csv, b)?);
+        let holds = match op {
+            "<=" => x <= y,
+            ">=" => x >= y,
+            "==" => x == y,
+            "<" => x < y,
+            _ => x > y,
+        };
+        if !holds {
+            return Ok(Some(format!("`{}` is false: {x} {op} {y}", clause.trim())));
+        }
+    }
+    Ok(None)
+}
+
+/// Checks the finding markers of one doc: the number checked and a message per failure (doc,
+/// line, CSV, the comparison that does not hold and its values).
+fn check_findings(
+    doc: &str,
+    text: &str,
+    load: &mut dyn FnMut(&str) -> Result<Csv, String>,
+) -> (usize, Vec<String>) {
+    let markers = match finding_markers(text) {
+        Ok(m) => m,
+        Err(e) => return (0, vec![format!("{doc}: {e}")]),
+    };
+    let mut failures = Vec::new();
+    for m in &markers {
+        let at = format!("{doc}:{}: finding (from {})", m.line, m.csv);
+        let result = load(&m.csv).and_then(|csv| check_condition(&csv, &m.condition));
+        match result {
+            Ok(None) => {}
+            Ok(Some(why)) => failures.push(format!("{at}: {why}")),
+            Err(e) => failures.push(format!("{at}: {e}")),
+        }
+    }
+    (markers.len(), failures)
+}
+
+/// The bullets of a doc's section `## TITLE` (each `- ` line with the indented lines under it)
+/// that hold no finding marker, by their first line; an error when the section or its bullets
+/// are missing.
+fn bullets_without_finding(text: &str, title: &str) -> Result<Vec<String>, String> {
+    let heading = format!("## {title}");
+    let section: Vec<&str> = text
+        .lines()
+        .skip_while(|l| l.trim_end() != heading)
+        .skip(1)
+        .take_while(|l| !l.starts_with("## "))
+        .collect();
+    let mut bullets: Vec<(String, String)> = Vec::new();
+    for line in section {
+        if let Some(first) = line.strip_prefix("- ") {
+            bullets.push((first.to_string(), line.to_string()));
+        } else if let Some((_, body)) = bullets.last_mut().filter(|_| line.starts_with(' ')) {
+            body.push('\n');
+            body.push_str(line);
+        } else if !line.trim().is_empty() && !bullets.is_empty() {
+            break;
+        }
+    }
+    if bullets.is_empty() {
+        return Err(format!("no section `{heading}` with bullets"));
+    }
+    Ok(bullets
+        .into_iter()
+        .filter(|(_, body)| !body.contains(FINDING_OPEN))
+        .map(|(first, _)| first)
+        .collect())
+}
+
+/// Every finding marker of every doc holds against its CSV, and every bullet of the README's
+/// "What we found" carries at least one.
+#[test]
+fn findings_hold() {
+    let mut failures = Vec::new();
+    let mut total = 0;
+    for doc in doc_files() {
+        let text = read_doc(&doc);
+        let (n, f) = check_findings(&doc, &text, &mut read_csv);
+        total += n;
+        failures.extend(f);
+    }
+    match bullets_without_finding(&read_doc("README.md"), "What we found") {
+        Ok(bare) => failures.extend(bare.into_iter().map(|b| {
+            format!("README.md, What we found: a finding without `{FINDING_OPEN} PATH: CONDITION -->`: {b}")
+        })),
+        Err(e) => failures.push(format!("README.md: {e}")),
+    }
+    println!("{total} findings checked");
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// A finding that the CSV supports passes; one it contradicts fails naming doc, line, the
+/// comparison and its values; a README bullet without a marker is named.
+#[test]
+fn a_wrong_finding_fails() {
+    let csv_text = "reading,mse_ours,mse_paper\nbracket-sq,5.4e-5,2.0e-4\n\
+                    bracket-2x,1.4e-5,9.0e-2\nliteral,3.8e-4,2.4e-2\n";
+    let mut load = |rel: &str| parse_csv(rel, csv_text);
+    let right = "Refitted, bracket-2x fits best<!-- ? t.csv: mse_ours[reading=bracket-2x] ==\n\
+                 min(mse_ours) && 100 * mse_paper[reading=bracket-sq] < mse_paper[reading=literal] -->.\n";
+    assert_eq!(check_findings("doc.md", right, &mut load), (1, Vec::new()));
+
+    let wrong = "Intro.\n\nThe literal reading is worst either way<!-- ? t.csv:\n\
+                 mse_ours[reading=literal] == max(mse_ours) &&\n\
+                 mse_paper[reading=literal] == max(mse_paper) -->.\n";
+    let (n, failures) = check_findings("doc.md", wrong, &mut load);
+    assert_eq!(n, 1);
+    assert_eq!(failures.len(), 1, "{failures:?}");
+    let f = &failures[0];
+    for part in [
+        "doc.md:3:",
+        "t.csv",
+        "`mse_paper[reading=literal] == max(mse_paper)` is false",
+        "0.024 == 0.09",
+    ] {
+        assert!(f.contains(part), "`{part}` missing from: {f}");
+    }
+
+    let (_, failures) = check_findings("doc.md", "x<!-- ? t.csv: mse_ours -->", &mut load);
+    assert!(failures[0].contains("no comparison"), "{failures:?}");
+
+    let readme = "# r\n\n## What we found\n\n- A finding<!-- ? t.csv: 1 < 2 -->, on\n  two lines.\n\
+                  - Another, unmarked,\n  on two lines.\n\nMore text.\n\n## Next\n\n- not a finding\n";
+    assert_eq!(
+        bullets_without_finding(readme, "What we found").unwrap(),
+        vec!["Another, unmarked,".to_string()]
+    );
+    assert!(bullets_without_finding("# r\n", "What we found").is_err());
+}
+
+/// `PATH#anchor` reads the first table under that heading of a Markdown file as a CSV.
+#[test]
+fn a_markdown_table_is_a_csv() {
+    let doc = "# Log\n\n## Current values\n\nText.\n\n| what | time |\n|---|---|\n\
+               | `make test`, clean clone | 5 min 27 s |\n| `make stale` | 6 min 48 s |\n\n\
+               ## Current values\n\n| what | time |\n|---|---|\n| x | 1 s |\n";
+    let csv = markdown_table("p.md#current-values", doc, "current-values").unwrap();
+    assert_eq!(csv.header, ["what", "time"]);
+    let all: Vec<&Vec<String>> = csv.rows.iter().collect();
+    assert_eq!(
+        render(&csv, &all, r#"{time[what="`make test`, clean*"]:v}"#).unwrap(),
+        "5 min 27 s"
+    );
+    let second = markdown_table("p.md", doc, "current-values-1").unwrap();
+    assert_eq!(second.rows, [["x", "1 s"]]);
+    assert!(markdown_table("p.md", doc, "nothing").is_err());
+}
+
+/// The bytes of a doc that a reader sees: its text less the HTML comments (the markers, which
+/// rendered Markdown does not show).
+fn visible_bytes(text: &str) -> usize {
+    let mut rest = text;
+    let mut bytes = 0;
+    while let Some(open) = rest.find("<!--") {
+        bytes += open;
+        rest = match rest[open..].find("-->") {
+            Some(close) => &rest[open + close + 3..],
+            None => "",
+        };
+    }
+    bytes + rest.len()
+}
+
 #[test]
 fn readme_is_a_first_page() {
-    let bytes = fs::metadata(root().join("README.md"))
-        .expect("README.md")
-        .len() as usize;
-    println!("README.md: {bytes} bytes (at most {README_MAX_BYTES})");
+    let bytes = visible_bytes(&read_doc("README.md"));
+    println!("README.md: {bytes} bytes without its HTML comments (at most {README_MAX_BYTES})");
     assert!(
         bytes <= README_MAX_BYTES,
-        "README.md is {bytes} bytes, more than {README_MAX_BYTES}"
+        "README.md is {bytes} bytes without its HTML comments, more than {README_MAX_BYTES}"
     );
+    assert_eq!(
+        visible_bytes("ab<!-- = x: {y:v} -->c<!-- ? x: 1 < 2 -->"),
+        3
+    );
+    assert_eq!(visible_bytes("a<!-- unclosed"), 1);
 }
 
 /// Targets of `[text](target)` and `![alt](target)`, outside code spans and fenced blocks.
@@ -958,8 +1287,26 @@ fn slug(heading: &str) -> String {
         .collect()
 }
 
-/// The anchors of a doc's ATX headings (`#` to `######`, outside fenced blocks); a repeated slug
-/// gets `-1`, `-2`, … as on GitHub.
+/// The anchor of an ATX heading line (`#` to `######`), given the anchors of the headings above it
+/// (a repeated slug gets `-1`, `-2`, … as on GitHub), which it joins; `None` for any other line.
+fn heading_slug(line: &str, anchors: &mut BTreeSet<String>) -> Option<String> {
+    let hashes = line.chars().take_while(|&c| c == '#').count();
+    if hashes == 0 || hashes > 6 || !line[hashes..].starts_with(' ') {
+        return None;
+    }
+    let title = line[hashes..].trim().trim_end_matches('#').trim_end();
+    let base = slug(title);
+    let mut candidate = base.clone();
+    let mut n = 0;
+    while anchors.contains(&candidate) {
+        n += 1;
+        candidate = format!("{base}-{n}");
+    }
+    anchors.insert(candidate.clone());
+    Some(candidate)
+}
+
+/// The anchors of a doc's ATX headings (outside fenced blocks).
 fn heading_anchors(text: &str) -> BTreeSet<String> {
     let mut anchors = BTreeSet::new();
     let mut fenced = false;
@@ -968,19 +1315,9 @@ fn heading_anchors(text: &str) -> BTreeSet<String> {
             fenced = !fenced;
             continue;
         }
-        let hashes = line.chars().take_while(|&c| c == '#').count();
-        if fenced || hashes == 0 || hashes > 6 || !line[hashes..].starts_with(' ') {
-            continue;
+        if !fenced {
+            heading_slug(line, &mut anchors);
         }
-        let title = line[hashes..].trim().trim_end_matches('#').trim_end();
-        let base = slug(title);
-        let mut candidate = base.clone();
-        let mut n = 0;
-        while anchors.contains(&candidate) {
-            n += 1;
-            candidate = format!("{base}-{n}");
-        }
-        anchors.insert(candidate);
     }
     anchors
 }

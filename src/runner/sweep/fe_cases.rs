@@ -418,7 +418,9 @@ impl Cacheable for FeOutcome {
                     .split_whitespace()
                     .map(|v| v.parse().ok())
                     .collect::<Option<_>>()?;
-                (x.len() % 2 == 0).then(|| x.chunks(2).map(|c| [c[0], c[1]]).collect())
+                x.len()
+                    .is_multiple_of(2)
+                    .then(|| x.chunks(2).map(|c| [c[0], c[1]]).collect())
             })
             .collect::<Option<Vec<Vec<[f64; 2]>>>>()?;
         let (loading, unloading) = match rows.iter().position(|&l| l == UNLOADING_LINE) {

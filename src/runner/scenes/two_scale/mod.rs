@@ -370,6 +370,27 @@ impl Scene for TwoScaleScene {
     }
 }
 
+/// The figure's footer line on the FE: its meshes, the error-estimate meshes (each profile's,
+/// grown with its face mesh) and the order assumed.
+fn fe_footer(s: &TwoScaleScene) -> String {
+    let estimate_meshes: std::collections::BTreeSet<usize> = (0..s.profiles.len())
+        .map(|i| s.estimate_mesh_of(i))
+        .collect();
+    let estimate_meshes: Vec<String> = estimate_meshes.iter().map(usize::to_string).collect();
+    format!(
+        "FE: finite strain, neo-Hookean, h/λ = 1, mesh {} elements along the face{} (peak ratio {}), {} across the thickness per face element, node events; E* = 1 MPa; its error estimated against mesh {} at order {}. Models: docs/replication.md R13.",
+        s.mesh,
+        match s.elements_per_small_wavelength {
+            0 => String::new(),
+            e => format!(" or {e} per wavelength of the finer harmonic, whichever is more"),
+        },
+        s.peak_ratio,
+        s.depth_ratio,
+        estimate_meshes.join(" or "),
+        s.fe_error_order
+    )
+}
+
 fn run(title: &str, s: &TwoScaleScene, opts: &RunOptions) -> Result<SceneResult> {
     let cases = s.cases();
     let solved = SolvedCases::solve(s.all_cases(), opts)?;
@@ -398,18 +419,7 @@ fn run(title: &str, s: &TwoScaleScene, opts: &RunOptions) -> Result<SceneResult>
             "fe_error_over_model_error",
         ],
     );
-    let mut remarks = Remarks::with_footer(vec![format!(
-        "FE: finite strain, neo-Hookean, h/λ = 1, mesh {} elements along the face{} (peak ratio {}), {} across the thickness per face element, node events; E* = 1 MPa; its error estimated against mesh {} at order {}. Models: docs/replication.md R13.",
-        s.mesh,
-        match s.elements_per_small_wavelength {
-            0 => String::new(),
-            e => format!(" or {e} per wavelength of the finer harmonic, whichever is more"),
-        },
-        s.peak_ratio,
-        s.depth_ratio,
-        s.error_estimate_mesh,
-        s.fe_error_order
-    )]);
+    let mut remarks = Remarks::with_footer(vec![fe_footer(s)]);
     let mut panels = vec![];
     for i in 0..s.profiles.len() {
         let tables = (&mut curves, &mut errors);
@@ -430,4 +440,29 @@ fn run(title: &str, s: &TwoScaleScene, opts: &RunOptions) -> Result<SceneResult>
         font_px: 14,
     };
     Ok(remarks.finish(title, layout, panels, vec![curves, errors]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The committed figures' footers name the meshes their specs solve: the separation scene's
+    /// n = 32 profiles grow the error-estimate mesh from 128 to 213.
+    #[test]
+    fn the_committed_footers_are_their_specs() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        for (stem, meshes) in [
+            ("two_scale", "mesh 128 at"),
+            ("two_scale_separation", "mesh 128 or 213 at"),
+        ] {
+            let spec = crate::runner::load_spec(&root.join(format!("experiments/{stem}.toml")))
+                .expect("the committed spec");
+            let scene = spec.two_scale.as_ref().expect("a two_scale spec");
+            let footer = fe_footer(scene);
+            assert!(footer.contains(meshes), "{stem}: {footer}");
+            let svg = std::fs::read_to_string(root.join(format!("figures/{stem}.svg")))
+                .expect("the committed figure");
+            assert!(svg.contains(&footer), "figures/{stem}.svg lacks: {footer}");
+        }
+    }
 }
