@@ -71,7 +71,7 @@ enum Command {
     /// Evaluate a model law, forward (a/λ → p̄/E*) or inverse (p̄/E* → a/λ), or with --profile
     /// its recursive superposition (p̄/E* → contact fraction); CSV on stdout, numbers in
     /// shortest round-trip form.
-    Eval(cli::eval::EvalArgs),
+    Eval(Box<cli::eval::EvalArgs>),
     /// Measure the wall time of every tier of a speed_accuracy spec (one thread, median of
     /// runs) and write the timings file its figure reads (make bench-tiers).
     TimeTiers(cli::timing::TimeTiersArgs),
