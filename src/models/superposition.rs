@@ -1,6 +1,7 @@
 //! Two-scale profiles by superposing single-scale laws: the paper's closing proposal
 //! (Sec. 5, "solutions for single-scale roughness can be superimposed"), made precise for a big
-//! wave plus one finer harmonic (docs/replication.md R13).
+//! wave plus one finer harmonic (docs/replication.md R13); applied scale by scale for many
+//! scales in `recursion` (R14), of which [`superposed_contact`] is the one-scale case.
 //!
 //! Units: lengths over the big wavelength λ (each small wave's own half-width over its own
 //! wavelength λ/n where named so), pressures over E*. The profile is the big wave (order 1,
@@ -51,7 +52,8 @@ pub use recursion::{order_ratios, recursive_contact, FinerScale};
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 use thiserror::Error;
 
-/// Largest small-wave order taken (one [`CrestContact`] per crest is returned).
+/// Largest small-wave order taken, and largest finest order of the recursion (one
+/// [`CrestContact`] per crest is returned).
 pub const MAX_ORDER: u32 = 1_000_000;
 
 /// Why a two-scale contact cannot be computed.
