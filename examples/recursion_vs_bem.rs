@@ -7,24 +7,11 @@
 //!
 //! `cargo run --release --example recursion_vs_bem`
 
-use wavy::models::{order_ratios, recursive_contact, FinerScale, PressureLaw, Westergaard};
+use wavy::models::{profile_contact, Westergaard};
 use wavy::profile::Profile;
 
 /// recursion / BEM − 1 of the contact fraction at the four loads.
 fn differences(profile: &Profile) -> Vec<f64> {
-    let laws: Vec<Westergaard> = profile
-        .harmonics()
-        .map(|h| Westergaard::new(h.aspect_ratio))
-        .collect();
-    let finer: Vec<FinerScale> = order_ratios(profile)
-        .expect("a Weierstrass profile's orders nest")
-        .into_iter()
-        .zip(&laws[1..])
-        .map(|(ratio, law)| FinerScale {
-            ratio,
-            law: law as &dyn PressureLaw,
-        })
-        .collect();
     let points = (64 * profile.max_order() as usize)
         .next_power_of_two()
         .max(4096);
@@ -32,7 +19,7 @@ fn differences(profile: &Profile) -> Vec<f64> {
         .iter()
         .map(|load| {
             let p = load * std::f64::consts::PI * profile.aspect_ratio;
-            let recursion = recursive_contact(&laws[0], &finer, p).expect("p̄ below p₀*");
+            let recursion = profile_contact(profile, Westergaard::new, p).expect("p̄ below p₀*");
             let bem = wavy::bem::solve(profile, p, points, 1e-10).expect("the BEM converges");
             recursion.contact_fraction / bem.contact_fraction - 1.0
         })

@@ -19,7 +19,7 @@ pub use coefficient_sets::CoefficientSet;
 pub use domain::FitDomain;
 pub use inverse::{a_over_lambda_at, InverseError};
 pub use superposition::{
-    contact_fraction_limit, order_ratios, recursive_contact, superposed_contact,
+    contact_fraction_limit, order_ratios, profile_contact, recursive_contact, superposed_contact,
     BigWaveDistribution, CrestContact, CrestState, FinerScale, SuperposedContact,
     SuperpositionError,
 };

@@ -48,7 +48,7 @@
 
 use super::inverse::check_invertible;
 use super::{a_over_lambda_at, InverseError, PressureLaw};
-pub use recursion::{order_ratios, recursive_contact, FinerScale};
+pub use recursion::{order_ratios, profile_contact, recursive_contact, FinerScale};
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 use thiserror::Error;
 

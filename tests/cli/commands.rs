@@ -466,16 +466,9 @@ fn eval_and_solve_take_a_weierstrass_profile() {
         "model,reading,coefficients,profile,tau_max_mpa,p_over_estar,contact_fraction,extrapolated"
     );
     let p: wavy::profile::Profile = profile.parse().unwrap();
-    let laws: Vec<wavy::models::Westergaard> = p
-        .harmonics()
-        .map(|h| wavy::models::Westergaard::new(h.aspect_ratio))
-        .collect();
-    let finer: Vec<wavy::models::FinerScale> = laws[1..]
-        .iter()
-        .map(|law| wavy::models::FinerScale { ratio: 3, law })
-        .collect();
     for (line, pressure) in lines[1..].iter().zip([0.01, 0.1]) {
-        let expected = wavy::models::recursive_contact(&laws[0], &finer, pressure).unwrap();
+        let expected =
+            wavy::models::profile_contact(&p, wavy::models::Westergaard::new, pressure).unwrap();
         let fraction: f64 = line.rsplit(',').nth(1).unwrap().parse().unwrap();
         assert_eq!(fraction, expected.contact_fraction, "{line}");
         assert!(line.starts_with("westergaard,,,\"1:0.05,3:"), "{line}");

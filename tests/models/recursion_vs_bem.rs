@@ -14,7 +14,7 @@
 //! `Σ_k AR_k n_k (2π)² ∝ Σ_k γ^{Dk}`. Both contacts are then Hertz's (a ∝ curvature^{−1/2} at a
 //! given load), so recursion / BEM → `√(Σ_{j<K} γ^{−Dj})`.
 
-use wavy::models::{order_ratios, recursive_contact, FinerScale, PressureLaw, Westergaard};
+use wavy::models::{profile_contact, Westergaard};
 use wavy::profile::Profile;
 
 /// Loads as fractions of the big wave's full-contact pressure π AR₀.
@@ -22,20 +22,7 @@ const LOADS: [f64; 4] = [0.05, 0.2, 0.5, 0.8];
 
 /// The recursion's contact fraction for `profile` at `p` (Westergaard at every scale).
 fn recursion(profile: &Profile, p: f64) -> f64 {
-    let laws: Vec<Westergaard> = profile
-        .harmonics()
-        .map(|h| Westergaard::new(h.aspect_ratio))
-        .collect();
-    let finer: Vec<FinerScale> = order_ratios(profile)
-        .unwrap()
-        .into_iter()
-        .zip(&laws[1..])
-        .map(|(ratio, law)| FinerScale {
-            ratio,
-            law: law as &dyn PressureLaw,
-        })
-        .collect();
-    recursive_contact(&laws[0], &finer, p)
+    profile_contact(profile, Westergaard::new, p)
         .unwrap()
         .contact_fraction
 }

@@ -171,6 +171,27 @@ pub fn order_ratios(profile: &Profile) -> Result<Vec<u32>, SuperpositionError> {
         .collect()
 }
 
+/// The recursive superposition over `profile`'s harmonics (their orders must nest,
+/// [`order_ratios`]), the law `law_at(AR_k)` at each scale, at p̄/E* = `p_over_estar`
+/// ([`recursive_contact`]).
+pub fn profile_contact<L: PressureLaw>(
+    profile: &Profile,
+    law_at: impl Fn(f64) -> L,
+    p_over_estar: f64,
+) -> Result<SuperposedContact, SuperpositionError> {
+    let ratios = order_ratios(profile)?;
+    let laws: Vec<L> = profile
+        .harmonics()
+        .map(|h| law_at(h.aspect_ratio))
+        .collect();
+    let finer: Vec<FinerScale> = ratios
+        .into_iter()
+        .zip(&laws[1..])
+        .map(|(ratio, law)| FinerScale { ratio, law })
+        .collect();
+    recursive_contact(&laws[0], &finer, p_over_estar)
+}
+
 /// The recursive superposition (module doc) of the big wave's law `big` (built for AR₀) and the
 /// finer scales `finer`, coarsest first, at the mean pressure `p_over_estar` = p̄/E*
 /// (0 < p̄ < the big wave's full-contact pressure). The crests returned are the finest scale's

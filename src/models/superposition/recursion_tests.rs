@@ -294,6 +294,14 @@ fn scales_that_do_not_nest_or_overflow_are_named_errors() {
     );
     let w: Profile = "weierstrass:0.05,3,1.3,4".parse().unwrap();
     assert_eq!(order_ratios(&w).unwrap(), vec![3, 3, 3]);
+    assert_eq!(
+        profile_contact(&w, Westergaard::new, 0.05).unwrap(),
+        recursion(&weierstrass_laws(0.05, 3, 1.3, 4), 3, 0.05)
+    );
+    assert_eq!(
+        profile_contact(&p, Westergaard::new, 0.05).unwrap_err(),
+        E::NotNested { order: 6, after: 4 }
+    );
     let law = Westergaard::new(0.1);
     let scale = FinerScale {
         ratio: 1000,

@@ -4,8 +4,8 @@
 //! line's messages. The Python bindings call the same functions.
 
 use crate::models::{
-    a_over_lambda_at, order_ratios, recursive_contact, CoefficientSet, FinerScale, InverseError,
-    ModelKind, ModelLaw, PressureLaw, Reading, SuperpositionError,
+    a_over_lambda_at, profile_contact, CoefficientSet, InverseError, ModelKind, ModelLaw,
+    PressureLaw, Reading, SuperpositionError,
 };
 use crate::profile::Profile;
 use crate::runner::requests::input_checks::{
@@ -163,33 +163,22 @@ impl ProfileRequest {
     /// pressure)), in order; the first bad input or failed inversion is the error.
     pub fn contact_fractions(&self, ps: &[f64]) -> Result<Vec<ProfileRow>, RequestError> {
         non_negative("--tau-max-mpa", self.tau_max_mpa)?;
-        let ratios = order_ratios(&self.profile).map_err(|e| InputError::Refused {
-            flag: "--profile".into(),
-            value: self.profile.to_string(),
-            reason: e.to_string(),
-        })?;
-        let laws: Vec<ModelLaw> = self
+        let law_at = |ar| {
+            ModelLaw::new(
+                self.model,
+                ar,
+                self.tau_max_mpa,
+                self.reading,
+                self.coefficients,
+            )
+        };
+        let extrapolated = self
             .profile
             .harmonics()
-            .map(|h| {
-                ModelLaw::new(
-                    self.model,
-                    h.aspect_ratio,
-                    self.tau_max_mpa,
-                    self.reading,
-                    self.coefficients,
-                )
-            })
-            .collect();
-        let finer: Vec<FinerScale> = ratios
-            .into_iter()
-            .zip(&laws[1..])
-            .map(|(ratio, law)| FinerScale { ratio, law })
-            .collect();
-        let extrapolated = laws.iter().any(ModelLaw::is_extrapolated);
+            .any(|h| law_at(h.aspect_ratio).is_extrapolated());
         ps.iter()
             .map(|&p| {
-                let c = recursive_contact(&laws[0], &finer, p).map_err(|e| self.error(p, e))?;
+                let c = profile_contact(&self.profile, law_at, p).map_err(|e| self.error(p, e))?;
                 Ok(ProfileRow {
                     p_over_estar: p,
                     contact_fraction: c.contact_fraction,
@@ -204,6 +193,12 @@ impl ProfileRequest {
     fn error(&self, p: f64, e: SuperpositionError) -> RequestError {
         match e {
             SuperpositionError::Pressure { .. } => out_of_range("--p-over-estar", p, "> 0").into(),
+            SuperpositionError::NotNested { .. } => InputError::Refused {
+                flag: "--profile".into(),
+                value: self.profile.to_string(),
+                reason: e.to_string(),
+            }
+            .into(),
             SuperpositionError::BigFullContact {
                 full_contact_p_over_estar,
                 ..
