@@ -68,9 +68,10 @@ enum Command {
     /// and dashed) and review/summary.md, what moved per panel; exit 1 when something moved
     /// beyond a spec's [check] tolerances.
     Diff(cli::diff::DiffArgs),
-    /// Evaluate a model law, forward (a/λ → p̄/E*) or inverse (p̄/E* → a/λ); CSV on stdout,
-    /// numbers in shortest round-trip form.
-    Eval(cli::eval::EvalArgs),
+    /// Evaluate a model law, forward (a/λ → p̄/E*) or inverse (p̄/E* → a/λ), or with --profile
+    /// its recursive superposition (p̄/E* → contact fraction); CSV on stdout, numbers in
+    /// shortest round-trip form.
+    Eval(Box<cli::eval::EvalArgs>),
     /// Measure the wall time of every tier of a speed_accuracy spec (one thread, median of
     /// runs) and write the timings file its figure reads (make bench-tiers).
     TimeTiers(cli::timing::TimeTiersArgs),

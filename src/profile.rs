@@ -9,6 +9,16 @@
 //! wave, order 1, with a positive aspect ratio; the others are finer (orders ≥ 2, strictly
 //! increasing). Every term is `≤ 0` and vanishes at `x = 0`, so the peak `x = 0` is the highest
 //! point and first contact happens there. A single sinusoid is the profile `1:AR`.
+//!
+//! A Weierstrass profile ([`Weierstrass`], `weierstrass:AR0,gamma,D,K`) is the list of `K`
+//! harmonics of orders `γ^k` (integer `γ ≥ 2`, fractal dimension `D ∈ (1, 2)`):
+//!
+//! ```text
+//! y_s(x) = −g₀ Σ_{k=0}^{K−1} γ^{(D−2)k} (1 − cos 2π γ^k x),   Δ_k = g₀ γ^{(D−2)k},  n_k = γ^k,
+//! AR_k = Δ_k n_k = AR₀ γ^{(D−1)k},   AR₀ = g₀/λ
+//! ```
+//!
+//! (each scale's amplitude over its own wavelength, as above: the scales steepen by `γ^{D−1}`).
 
 use std::fmt;
 use std::str::FromStr;
@@ -31,8 +41,8 @@ impl Harmonic {
     }
 }
 
-/// Most harmonics a profile may have.
-pub const MAX_HARMONICS: usize = 8;
+/// Most harmonics a profile may have (a Weierstrass profile of up to 16 scales).
+pub const MAX_HARMONICS: usize = 16;
 
 /// The finer harmonics of a profile (orders ≥ 2, strictly increasing; at most
 /// [`MAX_HARMONICS`] − 1); empty for a single sinusoid. A fixed-capacity list, so that the
@@ -137,11 +147,119 @@ pub enum ProfileError {
         count: usize,
     },
     /// Text that is not `order:aspect_ratio` pairs.
-    #[error("`{text}` is not a profile: comma-separated `order:aspect_ratio` pairs expected, e.g. `1:0.1,16:0.05`")]
+    #[error("`{text}` is not a profile: comma-separated `order:aspect_ratio` pairs expected, e.g. `1:0.1,16:0.05`, or `weierstrass:AR0,gamma,D,K`, e.g. `weierstrass:0.05,3,1.3,3`")]
     Syntax {
         /// The text given.
         text: String,
     },
+    /// A Weierstrass parameter out of range.
+    #[error("Weierstrass profile: {field} = {value} is out of range; allowed: {allowed}")]
+    Weierstrass {
+        /// The parameter (`AR0`, `gamma`, `D`, `K`).
+        field: &'static str,
+        /// The value given, as text.
+        value: String,
+        /// The range, in words.
+        allowed: String,
+    },
+}
+
+/// A Weierstrass profile (module doc): `K` scales of orders `γ^k`, aspect ratios
+/// `AR_k = AR₀ γ^{(D−1)k}`, `k = 0 … K−1`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Weierstrass {
+    /// `AR₀ = g₀/λ`, the big wave's aspect ratio (`> 0`).
+    pub aspect_ratio_0: f64,
+    /// The order ratio of successive scales `γ` (integer `≥ 2`, so the profile is λ-periodic).
+    pub gamma: u32,
+    /// The fractal dimension `D ∈ (1, 2)`.
+    pub dimension: f64,
+    /// The number of scales `K` (`1 … MAX_HARMONICS`).
+    pub scales: u32,
+}
+
+impl Weierstrass {
+    /// The profile's parameters, checked ([`ProfileError::Weierstrass`]): the finest order
+    /// `γ^{K−1}` must fit a `u32`.
+    pub fn new(
+        aspect_ratio_0: f64,
+        gamma: u32,
+        dimension: f64,
+        scales: u32,
+    ) -> Result<Self, ProfileError> {
+        let refuse = |field, value: String, allowed: String| {
+            Err(ProfileError::Weierstrass {
+                field,
+                value,
+                allowed,
+            })
+        };
+        if !(aspect_ratio_0.is_finite() && aspect_ratio_0 > 0.0) {
+            return refuse("AR0", aspect_ratio_0.to_string(), "> 0".into());
+        }
+        if gamma < 2 {
+            return refuse("gamma", gamma.to_string(), "an integer >= 2".into());
+        }
+        if !(dimension > 1.0 && dimension < 2.0) {
+            return refuse("D", dimension.to_string(), "1 < D < 2".into());
+        }
+        if !(1..=MAX_HARMONICS as u32).contains(&scales) {
+            return refuse("K", scales.to_string(), format!("1 ... {MAX_HARMONICS}"));
+        }
+        if gamma.checked_pow(scales - 1).is_none() {
+            return refuse(
+                "K",
+                scales.to_string(),
+                format!("a finest order gamma^(K-1) below 2^32 (gamma = {gamma})"),
+            );
+        }
+        Ok(Self {
+            aspect_ratio_0,
+            gamma,
+            dimension,
+            scales,
+        })
+    }
+
+    /// `AR_k = AR₀ γ^{(D−1)k}`.
+    pub fn aspect_ratio(&self, k: u32) -> f64 {
+        self.aspect_ratio_0 * (self.gamma as f64).powf((self.dimension - 1.0) * k as f64)
+    }
+
+    /// The harmonics `(γ^k, AR_k)`, `k = 0 … K−1`.
+    pub fn harmonics(&self) -> Vec<Harmonic> {
+        (0..self.scales)
+            .map(|k| Harmonic {
+                order: self.gamma.pow(k),
+                aspect_ratio: self.aspect_ratio(k),
+            })
+            .collect()
+    }
+
+    /// The profile of its harmonics.
+    pub fn profile(&self) -> Profile {
+        Profile::new(&self.harmonics()).expect("checked parameters give a valid harmonic list")
+    }
+}
+
+impl FromStr for Weierstrass {
+    type Err = ProfileError;
+    /// `AR0,gamma,D,K`, e.g. `0.05,3,1.3,3`.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let syntax = || ProfileError::Syntax {
+            text: format!("weierstrass:{s}"),
+        };
+        let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+        let [ar0, gamma, d, k] = parts[..] else {
+            return Err(syntax());
+        };
+        Self::new(
+            ar0.parse().map_err(|_| syntax())?,
+            gamma.parse().map_err(|_| syntax())?,
+            d.parse().map_err(|_| syntax())?,
+            k.parse().map_err(|_| syntax())?,
+        )
+    }
 }
 
 /// An even, λ-periodic profile: the big wave (order 1) and its finer harmonics.
@@ -262,8 +380,12 @@ impl Profile {
 
 impl FromStr for Profile {
     type Err = ProfileError;
-    /// `order:aspect_ratio` pairs separated by commas, e.g. `1:0.1,16:0.05`.
+    /// `order:aspect_ratio` pairs separated by commas, e.g. `1:0.1,16:0.05`, or a Weierstrass
+    /// profile `weierstrass:AR0,gamma,D,K` ([`Weierstrass`]).
     fn from_str(s: &str) -> Result<Self, Self::Err> {
+        if let Some(parameters) = s.trim().strip_prefix("weierstrass:") {
+            return Ok(parameters.parse::<Weierstrass>()?.profile());
+        }
         let syntax = || ProfileError::Syntax { text: s.into() };
         let harmonics = s
             .split(',')
@@ -311,8 +433,68 @@ mod tests {
         assert!(err("1:0.1,16:-0.05").contains("harmonic 16"));
         assert!(err("1:0").contains("harmonic 1"));
         assert!(err("1:0.1;2:0.1").contains("order:aspect_ratio"));
-        let many: Vec<String> = (1..=9).map(|n| format!("{n}:0.01")).collect();
-        assert!(err(&many.join(",")).contains("at most 8"));
+        let many: Vec<String> = (1..=17).map(|n| format!("{n}:0.01")).collect();
+        assert!(err(&many.join(",")).contains("at most 16"));
+        let sixteen: Vec<String> = (1..=16).map(|n| format!("{n}:0.01")).collect();
+        assert_eq!(
+            sixteen.join(",").parse::<Profile>().unwrap().max_order(),
+            16
+        );
+    }
+
+    /// `weierstrass:AR0,gamma,D,K` is the harmonic list `γ^k : AR₀ γ^{(D−1)k}`, and its height is
+    /// the issue's `−g₀ Σ γ^{(D−2)k} (1 − cos 2πγ^k x)` with `g₀ = AR₀` (λ = 1).
+    #[test]
+    fn a_weierstrass_profile_is_its_harmonic_list() {
+        let p: Profile = "weierstrass:0.05,3,1.3,3".parse().unwrap();
+        let orders: Vec<u32> = p.harmonics().map(|h| h.order).collect();
+        assert_eq!(orders, [1, 3, 9]);
+        for (k, h) in p.harmonics().enumerate() {
+            let expected = 0.05 * 3f64.powf(0.3 * k as f64);
+            assert!((h.aspect_ratio / expected - 1.0).abs() < 1e-15, "{h:?}");
+        }
+        // 0.0695, 0.0967 as the issue lists them (to its three digits)
+        let listed: Profile = "1:0.05,3:0.0695,9:0.0967".parse().unwrap();
+        for (a, b) in p.harmonics().zip(listed.harmonics()) {
+            assert!(
+                (a.aspect_ratio - b.aspect_ratio).abs() < 5e-5,
+                "{a:?} vs {b:?}"
+            );
+        }
+        let t = std::f64::consts::TAU;
+        for x in [0.0, 0.01, 0.13, 0.37, 0.5] {
+            let issue: f64 = -0.05
+                * (0..3)
+                    .map(|k| 3f64.powf(-0.7 * k as f64) * (1.0 - (t * 3f64.powi(k) * x).cos()))
+                    .sum::<f64>();
+            assert!((p.y(x) - issue).abs() < 1e-16, "x = {x}");
+        }
+        let k16: Profile = "weierstrass:0.01,2,1.5,16".parse().unwrap();
+        assert_eq!(k16.max_order(), 1 << 15);
+    }
+
+    #[test]
+    fn refuses_bad_weierstrass_parameters_naming_them() {
+        let err = |s: &str| s.parse::<Profile>().unwrap_err().to_string();
+        assert!(err("weierstrass:0,3,1.3,3").contains("AR0 = 0"));
+        assert!(err("weierstrass:0.1,1,1.3,3").contains("gamma = 1"));
+        assert!(err("weierstrass:0.1,3,2,3").contains("D = 2"));
+        assert!(err("weierstrass:0.1,3,1,3").contains("D = 1"));
+        assert!(err("weierstrass:0.1,3,1.5,0").contains("K = 0"));
+        assert!(err("weierstrass:0.1,3,1.5,17").contains("K = 17"));
+        let e = err("weierstrass:0.1,1000,1.5,5");
+        assert!(e.contains("K = 5") && e.contains("2^32"), "{e}");
+        for bad in [
+            "weierstrass:0.1,3,1.5",
+            "weierstrass:0.1,3.5,1.5,3",
+            "weierstrass:a,3,1.5,3",
+        ] {
+            assert!(
+                err(bad).contains("weierstrass:AR0,gamma,D,K"),
+                "{}",
+                err(bad)
+            );
+        }
     }
 
     /// A single sinusoid's height, slope and curvature are the closed forms, bit for bit.

@@ -97,7 +97,8 @@ def solve(
     profile : str, optional
         Instead of ``ar``: an even periodic profile as ``order:aspect_ratio`` pairs,
         comma-separated, the first of order 1, e.g. "1:0.1,16:0.05" (each aspect ratio is the
-        harmonic's amplitude over its own wavelength λ/order). Default None.
+        harmonic's amplitude over its own wavelength λ/order), or a Weierstrass profile
+        "weierstrass:AR0,gamma,D,K" (docs/replication.md R14). Default None.
     until_contact_fraction : float, optional
         Instead of ``until_a_over_lambda``: load until the contact fraction (total contact
         length over λ) reaches this, in (0, 1); a profile's counterpart of

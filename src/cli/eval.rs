@@ -1,15 +1,22 @@
-//! `wavy eval`: a closed-form law, forward (a/λ → p̄/E*) or inverse (p̄/E* → a/λ), as CSV.
+//! `wavy eval`: a closed-form law, forward (a/λ → p̄/E*) or inverse (p̄/E* → a/λ), or with
+//! `--profile` the recursive superposition of the law over a profile's harmonics (p̄/E* →
+//! contact fraction), as CSV.
 
 use super::input::{non_negative, one_of, positive};
 use anyhow::Result;
 use std::io::Write;
 use wavy::accuracy::Tier;
 use wavy::models::{CoefficientSet, ModelKind, Reading};
-use wavy::runner::requests::eval_request::LawRequest;
+use wavy::profile::Profile;
+use wavy::runner::requests::eval_request::{LawRequest, ProfileRequest};
 
 /// The CSV header of `wavy eval`.
 pub const HEADER: &str =
     "model,reading,coefficients,aspect_ratio,tau_max_mpa,a_over_lambda,p_over_estar,extrapolated";
+
+/// The CSV header of `wavy eval --profile`.
+pub const PROFILE_HEADER: &str =
+    "model,reading,coefficients,profile,tau_max_mpa,p_over_estar,contact_fraction,extrapolated";
 
 /// Arguments of `wavy eval`.
 #[derive(Debug, Clone, clap::Args)]
@@ -35,8 +42,15 @@ pub struct EvalArgs {
     #[arg(long, default_value = "paper-table1", value_parser = one_of::<CoefficientSet>(CoefficientSet::ALL.map(CoefficientSet::name)))]
     pub coefficients: CoefficientSet,
     /// Aspect ratio Δ/λ (> 0).
-    #[arg(long, allow_hyphen_values = true)]
-    pub ar: f64,
+    #[arg(long, allow_hyphen_values = true, required_unless_present = "profile")]
+    pub ar: Option<f64>,
+    /// Instead of --ar: a profile (`order:aspect_ratio` pairs, each order a multiple of the one
+    /// before, or `weierstrass:AR0,gamma,D,K`) whose contact fraction at each --p-over-estar
+    /// the recursive superposition of --model gives, the law at each harmonic's own aspect
+    /// ratio (docs/replication.md R14). Columns: model, reading, coefficients, profile,
+    /// tau_max_mpa, p_over_estar, contact_fraction, extrapolated.
+    #[arg(long, value_parser = super::input::profile, conflicts_with_all = ["ar", "tolerance", "a_over_lambda"], requires = "p_over_estar")]
+    pub profile: Option<Profile>,
     /// Interfacial shear strength τ_max in MPa (≥ 0).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub tau_max_mpa: f64,
@@ -51,10 +65,14 @@ pub struct EvalArgs {
 /// Runs `wavy eval`, writing CSV to `out`; an input error names the flag. The evaluation is the
 /// library's (`wavy::runner::requests::eval_request`, `wavy::runner::requests::tolerance_choice`).
 pub fn eval(args: &EvalArgs, out: &mut impl Write) -> Result<()> {
-    positive("--ar", args.ar)?;
+    if let Some(profile) = args.profile {
+        return eval_profile(args, profile, out);
+    }
+    let ar = args.ar.expect("clap requires --ar without --profile");
+    positive("--ar", ar)?;
     non_negative("--tau-max-mpa", args.tau_max_mpa)?;
     if let Some(tolerance) = args.tolerance {
-        let e = super::tolerance::eval(args.ar, args.tau_max_mpa, &args.a_over_lambda, tolerance)?;
+        let e = super::tolerance::eval(ar, args.tau_max_mpa, &args.a_over_lambda, tolerance)?;
         let (reading, coefficients) = match e.tier {
             Tier::Wnl(set) => (e.tier.reading().name(), set.name()),
             _ => ("", ""),
@@ -64,7 +82,7 @@ pub fn eval(args: &EvalArgs, out: &mut impl Write) -> Result<()> {
             &e.tier.to_string(),
             reading,
             coefficients,
-            args,
+            (ar, args.tau_max_mpa),
             &e.rows,
         );
     }
@@ -73,7 +91,7 @@ pub fn eval(args: &EvalArgs, out: &mut impl Write) -> Result<()> {
         .expect("clap requires --model without --tolerance");
     let request = LawRequest {
         model,
-        ar: args.ar,
+        ar,
         tau_max_mpa: args.tau_max_mpa,
         reading: args.reading,
         coefficients: args.coefficients,
@@ -86,17 +104,24 @@ pub fn eval(args: &EvalArgs, out: &mut impl Write) -> Result<()> {
         .iter()
         .map(|r| (r.a_over_lambda, r.p_over_estar, r.extrapolated))
         .collect();
-    write_rows(out, model.key(), reading, coefficients, args, &rows)
+    write_rows(
+        out,
+        model.key(),
+        reading,
+        coefficients,
+        (ar, args.tau_max_mpa),
+        &rows,
+    )
 }
 
 /// Writes the CSV of `wavy eval`: [`HEADER`], then one line per (a/λ, p̄/E*, extrapolated) of
-/// `rows`, evaluated by `law` (a model key or a tier name).
+/// `rows`, evaluated by `law` (a model key or a tier name) at (AR, τ_max).
 fn write_rows(
     out: &mut impl Write,
     law: &str,
     reading: &str,
     coefficients: &str,
-    args: &EvalArgs,
+    (ar, tau_max_mpa): (f64, f64),
     rows: &[(f64, f64, bool)],
 ) -> Result<()> {
     writeln!(out, "{HEADER}")?;
@@ -104,7 +129,45 @@ fn write_rows(
         writeln!(
             out,
             "{law},{reading},{coefficients},{},{},{x},{p},{extrapolated}",
-            args.ar, args.tau_max_mpa
+            ar, tau_max_mpa
+        )?;
+    }
+    Ok(())
+}
+
+/// `wavy eval --profile`: the contact fraction of the recursive superposition at each
+/// --p-over-estar (`wavy::runner::requests::eval_request::ProfileRequest`), as CSV.
+fn eval_profile(args: &EvalArgs, profile: Profile, out: &mut impl Write) -> Result<()> {
+    non_negative("--tau-max-mpa", args.tau_max_mpa)?;
+    let model = args
+        .model
+        .expect("clap requires --model without --tolerance");
+    let request = ProfileRequest {
+        model,
+        profile,
+        tau_max_mpa: args.tau_max_mpa,
+        reading: args.reading,
+        coefficients: args.coefficients,
+    };
+    let rows = request.contact_fractions(&args.p_over_estar)?;
+    let (reading, coefficients) = LawRequest {
+        model,
+        ar: profile.aspect_ratio,
+        tau_max_mpa: args.tau_max_mpa,
+        reading: args.reading,
+        coefficients: args.coefficients,
+    }
+    .reading_and_coefficients();
+    writeln!(out, "{PROFILE_HEADER}")?;
+    for r in rows {
+        writeln!(
+            out,
+            "{},{reading},{coefficients},\"{profile}\",{},{},{},{}",
+            model.key(),
+            args.tau_max_mpa,
+            r.p_over_estar,
+            r.contact_fraction,
+            r.extrapolated
         )?;
     }
     Ok(())

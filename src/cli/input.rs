@@ -35,7 +35,8 @@ pub fn mesh(s: &str) -> Result<MeshLevel, String> {
     wavy::runner::requests::input_checks::mesh(s).map_err(|e| e.to_string())
 }
 
-/// An even periodic profile, `order:aspect_ratio` pairs (`wavy::profile`; the library's check,
+/// An even periodic profile, `order:aspect_ratio` pairs or `weierstrass:AR0,gamma,D,K`
+/// (`wavy::profile`; the library's check,
 /// the profile's own message for clap, which names the flag itself).
 pub fn profile(s: &str) -> Result<wavy::profile::Profile, String> {
     wavy::runner::requests::input_checks::profile(s).map_err(|e| match e {

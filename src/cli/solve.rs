@@ -27,7 +27,9 @@ pub struct SolveArgs {
     /// Instead of --ar: an even periodic profile as cosine harmonics `order:aspect_ratio`,
     /// comma-separated, the first of order 1 (the wavelength λ), e.g. `1:0.1,16:0.05`; each
     /// aspect ratio is the harmonic's amplitude over its own wavelength λ/order
-    /// (docs/replication.md R13). A profile's rows come a few load steps late, each final once
+    /// (docs/replication.md R13); at most 16 harmonics. Or a Weierstrass profile
+    /// `weierstrass:AR0,gamma,D,K`: the K harmonics `gamma^k : AR0 gamma^((D-1)k)`, integer
+    /// gamma ≥ 2, 1 < D < 2 (R14). A profile's rows come a few load steps late, each final once
     /// the later touchdowns have placed its patch edges.
     #[arg(long, value_parser = super::input::profile)]
     pub profile: Option<Profile>,

@@ -1,5 +1,6 @@
 //! Closed-form contact laws p̄/E*(a/λ) for a rigid sinusoid on a soft solid, their inverse, and
-//! the superposition of two of them for a two-scale profile (`superposition`, R13).
+//! the superposition of two of them for a two-scale profile (`superposition`, R13), or of many,
+//! scale by scale, for a Weierstrass profile (`superposition::recursion`, R14).
 //!
 //! Everything here is dimensionless: the contact half-width enters as `a_over_lambda`
 //! (a/λ ∈ [0, ½], ½ = full contact), the mean pressure as `p_over_estar` (p̄/E*), the
@@ -19,8 +20,9 @@ pub use coefficient_sets::CoefficientSet;
 pub use domain::FitDomain;
 pub use inverse::{a_over_lambda_at, InverseError};
 pub use superposition::{
-    contact_fraction_limit, superposed_contact, BigWaveDistribution, CrestContact, CrestState,
-    SuperposedContact, SuperpositionError,
+    contact_fraction_limit, order_ratios, profile_contact, recursive_contact, superposed_contact,
+    BigWaveDistribution, CrestContact, CrestState, FinerScale, SuperposedContact,
+    SuperpositionError,
 };
 pub use westergaard::Westergaard;
 pub use wnl::{Coefficients, Reading, Wnl};

@@ -1,6 +1,7 @@
 //! Two-scale profiles by superposing single-scale laws: the paper's closing proposal
 //! (Sec. 5, "solutions for single-scale roughness can be superimposed"), made precise for a big
-//! wave plus one finer harmonic (docs/replication.md R13).
+//! wave plus one finer harmonic (docs/replication.md R13); applied scale by scale for many
+//! scales in `recursion` (R14), of which [`superposed_contact`] is the one-scale case.
 //!
 //! Units: lengths over the big wavelength λ (each small wave's own half-width over its own
 //! wavelength λ/n where named so), pressures over E*. The profile is the big wave (order 1,
@@ -47,10 +48,12 @@
 
 use super::inverse::check_invertible;
 use super::{a_over_lambda_at, InverseError, PressureLaw};
+pub use recursion::{order_ratios, profile_contact, recursive_contact, FinerScale};
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 use thiserror::Error;
 
-/// Largest small-wave order taken (one [`CrestContact`] per crest is returned).
+/// Largest small-wave order taken, and largest finest order of the recursion (one
+/// [`CrestContact`] per crest is returned).
 pub const MAX_ORDER: u32 = 1_000_000;
 
 /// Why a two-scale contact cannot be computed.
@@ -84,6 +87,11 @@ pub enum SuperpositionError {
         half_width_over_lambda: f64,
         p_over_estar: f64,
     },
+    #[error(
+        "harmonic order {order} does not divide into whole waves of order {after}: the \
+         recursive superposition needs each order a multiple (≥ 2) of the one before"
+    )]
+    NotNested { order: u32, after: u32 },
     #[error("the small wave's law cannot be inverted")]
     SmallLaw {
         #[source]
@@ -124,15 +132,20 @@ pub struct CrestContact {
     pub state: CrestState,
 }
 
-/// The superposition model's answer at one mean pressure.
+/// The superposition model's answer at one mean pressure (two scales, or many:
+/// [`recursive_contact`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SuperposedContact {
-    /// Total contact length over λ, per wavelength λ: Σ_j 2 a₂,j/λ ∈ [0, 1].
+    /// Total contact length over λ, per wavelength λ: Σ_j 2 a₂,j/λ ∈ [0, 1] over the finest
+    /// scale's crests.
     pub contact_fraction: f64,
     /// The big wave's contact half-width a₁/λ at p̄ (so its own fraction is 2a₁/λ).
     pub big_half_width_over_lambda: f64,
-    /// The n small waves of one big wavelength, j = 0 … n−1.
+    /// The finest scale's waves of one big wavelength, j = 0 … n−1 (n its order).
     pub crests: Vec<CrestContact>,
+    /// Each scale's own contact fraction, the big wave's 2a₁/λ first, the finest's
+    /// (`contact_fraction`) last.
+    pub scale_fractions: Vec<f64>,
 }
 
 /// Westergaard's pressure distribution under a rigid sinusoid of unit wavelength, with contact
@@ -325,53 +338,19 @@ fn small_width(
 
 /// The superposition model (module doc) for the big wave's law `big` (built for AR₁), the
 /// small wave's law `small` (built for AR₂, in units of its own wavelength), the small wave's
-/// order `order` (2 ≤ n ≤ [`MAX_ORDER`]), at the mean pressure `p_over_estar` = p̄/E*.
+/// order `order` (2 ≤ n ≤ [`MAX_ORDER`]), at the mean pressure `p_over_estar` = p̄/E*: the
+/// recursive superposition ([`recursive_contact`]) with one finer scale.
 pub fn superposed_contact(
     big: &dyn PressureLaw,
     small: &dyn PressureLaw,
     order: u32,
     p_over_estar: f64,
 ) -> Result<SuperposedContact, SuperpositionError> {
-    check_order(order)?;
-    let distribution = big_wave(big, p_over_estar)?;
-    check_invertible(small).map_err(|source| SuperpositionError::SmallLaw { source })?;
-    let full = small.full_contact_p_over_estar();
-    let n = order as f64;
-    let widths = distribution
-        .crest_means_by_distance(order)
-        .into_iter()
-        .enumerate()
-        .map(|(k, p)| {
-            small_width(small, full, p)
-                .map(|(width, state)| (p, width, state))
-                .map_err(|source| SuperpositionError::SmallInverse {
-                    x_over_lambda: k as f64 / n,
-                    p_over_estar: p,
-                    source,
-                })
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let crests: Vec<CrestContact> = (0..order)
-        .map(|j| {
-            let (p, width, state) = widths[j.min(order - j) as usize];
-            CrestContact {
-                x_over_lambda: j as f64 / n,
-                p_over_estar: p,
-                half_width_over_wavelength: width,
-                state,
-            }
-        })
-        .collect();
-    let contact_fraction = crests
-        .iter()
-        .map(|c| 2.0 * c.half_width_over_wavelength)
-        .sum::<f64>()
-        / n;
-    Ok(SuperposedContact {
-        contact_fraction,
-        big_half_width_over_lambda: distribution.half_width_over_lambda(),
-        crests,
-    })
+    let scale = FinerScale {
+        ratio: order,
+        law: small,
+    };
+    recursive_contact(big, &[scale], p_over_estar)
 }
 
 /// Gauss–Legendre panels per segment of [`contact_fraction_limit`]'s quadrature.
@@ -484,5 +463,6 @@ fn gauss_legendre(m: usize) -> (Vec<f64>, Vec<f64>) {
     (nodes, weights)
 }
 
+mod recursion;
 #[cfg(test)]
 mod superposition_tests;

@@ -439,6 +439,81 @@ fn hyphenated_numbers_and_unknown_names_are_refused_by_flag() {
     }
 }
 
+/// `wavy eval --profile`: the recursive superposition's contact fraction per mean pressure, the
+/// same as the library's; a profile whose orders do not nest, or a pressure at or beyond the big
+/// wave's full contact, is invalid input naming the flag. `wavy solve` takes the same profile.
+#[test]
+fn eval_and_solve_take_a_weierstrass_profile() {
+    let profile = "weierstrass:0.05,3,1.3,3";
+    let o = wavy(
+        &[
+            "eval",
+            "--model",
+            "westergaard",
+            "--profile",
+            profile,
+            "--p-over-estar",
+            "0.01",
+            "0.1",
+        ],
+        here(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(
+        lines[0],
+        "model,reading,coefficients,profile,tau_max_mpa,p_over_estar,contact_fraction,extrapolated"
+    );
+    let p: wavy::profile::Profile = profile.parse().unwrap();
+    for (line, pressure) in lines[1..].iter().zip([0.01, 0.1]) {
+        let expected =
+            wavy::models::profile_contact(&p, wavy::models::Westergaard::new, pressure).unwrap();
+        let fraction: f64 = line.rsplit(',').nth(1).unwrap().parse().unwrap();
+        assert_eq!(fraction, expected.contact_fraction, "{line}");
+        assert!(line.starts_with("westergaard,,,\"1:0.05,3:"), "{line}");
+    }
+    for (args, message) in [
+        (
+            ["--profile", "1:0.1,4:0.05,6:0.05", "--p-over-estar", "0.05"],
+            "--profile",
+        ),
+        (
+            ["--profile", profile, "--p-over-estar", "0.2"],
+            "--p-over-estar = 0.2",
+        ),
+        (
+            [
+                "--profile",
+                "weierstrass:0.05,3,2.5,3",
+                "--p-over-estar",
+                "0.1",
+            ],
+            "D = 2.5",
+        ),
+    ] {
+        let mut all = vec!["eval", "--model", "westergaard"];
+        all.extend(args);
+        let o = wavy(&all, here());
+        assert_eq!(o.status.code(), Some(2), "{all:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(message), "{all:?}: {}", stderr(&o));
+        assert!(stdout(&o).is_empty());
+    }
+    let o = wavy(
+        &[
+            "solve",
+            "--profile",
+            profile,
+            "--kinematics",
+            "linear",
+            "--until-contact-fraction",
+            "0.3",
+        ],
+        here(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
 /// `--profile`: a two-scale curve with its contact fraction and patches; a profile the mesh
 /// cannot resolve, or bad syntax, is invalid input (exit 2) naming the harmonic.
 #[test]

@@ -7,3 +7,4 @@
 mod coefficient_sets;
 mod extremes_models;
 mod laws;
+mod recursion_vs_bem;

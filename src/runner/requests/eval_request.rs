@@ -1,14 +1,17 @@
 //! `wavy eval` without its arguments: a closed-form law at (AR, τ_max), forward (a/λ → p̄/E*)
-//! or inverse (p̄/E* → a/λ), every input checked with the command line's messages. The Python
-//! bindings call the same functions.
+//! or inverse (p̄/E* → a/λ), or the recursive superposition of one law per harmonic of a profile
+//! (p̄/E* → contact fraction, docs/replication.md R14), every input checked with the command
+//! line's messages. The Python bindings call the same functions.
 
 use crate::models::{
-    a_over_lambda_at, CoefficientSet, InverseError, ModelKind, ModelLaw, PressureLaw, Reading,
+    a_over_lambda_at, profile_contact, CoefficientSet, InverseError, ModelKind, ModelLaw,
+    PressureLaw, Reading, SuperpositionError,
 };
+use crate::profile::Profile;
 use crate::runner::requests::input_checks::{
     a_over_lambda_in_range, non_negative, out_of_range, positive, InputError,
 };
-use crate::runner::requests::request_error::RequestError;
+use crate::runner::requests::request_error::{full_message, RequestError};
 
 /// One law at one (AR, τ_max in MPa), with the command line's names and units.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -128,6 +131,91 @@ impl LawRequest {
                 reason: other.to_string(),
             }
             .into(),
+        }
+    }
+}
+
+/// The recursive superposition (R14) of a profile: the law `model` at each harmonic's own aspect
+/// ratio and the same τ_max, the harmonics' orders each a multiple of the one before.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProfileRequest {
+    pub model: ModelKind,
+    pub profile: Profile,
+    /// Interfacial shear strength τ_max in MPa (≥ 0; unused by Westergaard but checked).
+    pub tau_max_mpa: f64,
+    /// Reading of Eq. 4 (WNL only).
+    pub reading: Reading,
+    /// Coefficient set (WNL only).
+    pub coefficients: CoefficientSet,
+}
+
+/// One point of the recursion: p̄/E*, the contact fraction, and whether any scale's
+/// (AR_k, τ_max) lies outside the fit domain.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProfileRow {
+    pub p_over_estar: f64,
+    pub contact_fraction: f64,
+    pub extrapolated: bool,
+}
+
+impl ProfileRequest {
+    /// The contact fraction at every p̄/E* of `ps` (each in (0, the big wave's full-contact
+    /// pressure)), in order; the first bad input or failed inversion is the error.
+    pub fn contact_fractions(&self, ps: &[f64]) -> Result<Vec<ProfileRow>, RequestError> {
+        non_negative("--tau-max-mpa", self.tau_max_mpa)?;
+        let law_at = |ar| {
+            ModelLaw::new(
+                self.model,
+                ar,
+                self.tau_max_mpa,
+                self.reading,
+                self.coefficients,
+            )
+        };
+        let extrapolated = self
+            .profile
+            .harmonics()
+            .any(|h| law_at(h.aspect_ratio).is_extrapolated());
+        ps.iter()
+            .map(|&p| {
+                let c = profile_contact(&self.profile, law_at, p).map_err(|e| self.error(p, e))?;
+                Ok(ProfileRow {
+                    p_over_estar: p,
+                    contact_fraction: c.contact_fraction,
+                    extrapolated,
+                })
+            })
+            .collect()
+    }
+
+    /// A recursion that failed at `p`: a pressure out of range (an input error) or a law that
+    /// could not be inverted (a failed computation, naming the inputs).
+    fn error(&self, p: f64, e: SuperpositionError) -> RequestError {
+        match e {
+            SuperpositionError::Pressure { .. } => out_of_range("--p-over-estar", p, "> 0").into(),
+            SuperpositionError::NotNested { .. } => InputError::Refused {
+                flag: "--profile".into(),
+                value: self.profile.to_string(),
+                reason: e.to_string(),
+            }
+            .into(),
+            SuperpositionError::BigFullContact {
+                full_contact_p_over_estar,
+                ..
+            } => out_of_range(
+                "--p-over-estar",
+                p,
+                format!(
+                    "(0, {full_contact_p_over_estar}) (below the big wave's full-contact pressure)"
+                ),
+            )
+            .into(),
+            other => RequestError::Failed(format!(
+                "the recursive superposition of --profile {} with --model {} at --p-over-estar {p}: {}",
+                self.profile,
+                self.model.key(),
+                full_message(&other)
+            )),
         }
     }
 }
