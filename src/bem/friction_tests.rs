@@ -151,3 +151,38 @@ fn friction_on_a_layer_is_refused() {
     let error = FrictionalContact::new(&layered).err().unwrap();
     assert!(error.to_string().contains("half-plane only"), "{error}");
 }
+
+/// Incremental loading of a parabola-like crest (AR 0.001) in Goodman's approximation: the stick
+/// zone is Spence's, [`spence::incremental_stick_ratio`] (ν 0.3: 0.4057 at μ 0.2, 0.9677 at μ
+/// 0.5), to the grid's reading of the front (a step is 0.012 of a at N 16384, a/λ 0.005) and the
+/// periodic crest's departure from a parabola, which grows with a/λ (at μ 0.2 about
+/// 3 a/λ in c/a: 0.409, 0.418, 0.425, 0.432 at a/λ 0.0025 … 0.01 on N 32768, whose limit
+/// a/λ → 0 is 0.403). 64 equal steps of a.
+#[test]
+fn incremental_loading_has_spences_stick_zone() {
+    let profile = Profile::sinusoid(0.001);
+    let beta = dundurs_beta(0.3);
+    for (mu, tolerance) in [(0.2, 0.025), (0.5, 0.012)] {
+        let mut contact = FrictionalContact::new(&FrictionalProblem {
+            coupling: NormalCoupling::Goodman,
+            ..problem(&profile, 0.3, mu, 16384)
+        })
+        .unwrap();
+        let steps = 64;
+        let mut last = None;
+        for j in 1..=steps {
+            let a = 0.005 * j as f64 / steps as f64;
+            let inc = contact.increment(westergaard_pressure(0.001, a)).unwrap();
+            contact.commit(&inc);
+            last = Some(inc);
+        }
+        let inc = last.unwrap();
+        let ratio = inc.stick_half_width_over_lambda / outermost_edge(&inc);
+        let want = spence::incremental_stick_ratio(mu, beta);
+        eprintln!("μ = {mu}: incremental c/a = {ratio}, Spence {want}");
+        assert!(
+            (ratio - want).abs() < tolerance,
+            "μ = {mu}: c/a = {ratio}, Spence {want}"
+        );
+    }
+}
