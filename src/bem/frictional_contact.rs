@@ -40,7 +40,7 @@
 use super::grid::GridCompliance;
 use super::polonsky_keer::{self, Stalled};
 use super::ElasticBody;
-use super::{edges, min_points_per_wavelength, shear_cg, BemError};
+use super::{edges, shear_cg, BemError};
 use crate::profile::Profile;
 
 /// Whether the shear traction acts back on the normal problem.
@@ -88,7 +88,8 @@ pub struct FrictionalProblem<'a> {
     pub poisson: f64,
     pub law: InterfaceLaw,
     pub coupling: NormalCoupling,
-    /// Grid points per wavelength (a power of two, at least [`min_points_per_wavelength`]).
+    /// Grid points per wavelength (a power of two, at least
+    /// [`super::min_points_per_wavelength`]).
     pub points_per_wavelength: usize,
     /// Relative tolerance (`0 < tol < 1`): gaps and slips within `tol · Σ Δ_k`.
     pub tol: f64,
@@ -238,8 +239,8 @@ impl FrictionalContact {
                     *si = di + self.beta * hi;
                 }
             }
-            let normal = polonsky_keer::solve_from(
-                p,
+            let normal = polonsky_keer::solve(
+                Some(p),
                 &shifted,
                 p_over_estar,
                 &mut self.k_op,
@@ -421,17 +422,5 @@ fn check_inputs(problem: &FrictionalProblem, profile: &Profile) -> Result<(), Be
             tau_max_over_estar: tau,
         });
     }
-    let n = problem.points_per_wavelength;
-    let minimum = min_points_per_wavelength(profile);
-    if !n.is_power_of_two() || n < minimum || n > super::MAX_POINTS_PER_WAVELENGTH {
-        return Err(BemError::Grid {
-            points: n,
-            minimum,
-            why: format!(
-                "16 points on the wavelength of the highest order {}, at least 64, at most 2^24",
-                profile.max_order()
-            ),
-        });
-    }
-    Ok(())
+    super::check_grid(profile, problem.points_per_wavelength)
 }

@@ -204,6 +204,23 @@ pub fn min_points_per_wavelength(profile: &Profile) -> usize {
 /// Largest grid accepted (2²⁴ points).
 pub const MAX_POINTS_PER_WAVELENGTH: usize = 1 << 24;
 
+/// `Ok` when `n` grid points per wavelength resolve `profile`: a power of two, at least
+/// [`min_points_per_wavelength`], at most [`MAX_POINTS_PER_WAVELENGTH`].
+pub(crate) fn check_grid(profile: &Profile, n: usize) -> Result<(), BemError> {
+    let minimum = min_points_per_wavelength(profile);
+    if !n.is_power_of_two() || n < minimum || n > MAX_POINTS_PER_WAVELENGTH {
+        return Err(BemError::Grid {
+            points: n,
+            minimum,
+            why: format!(
+                "16 points on the wavelength of the highest order {}, at least 64, at most 2^24",
+                profile.max_order()
+            ),
+        });
+    }
+    Ok(())
+}
+
 /// The Polonsky–Keer iteration cap for `n` points: `1000 + 20√N` (3560 at N = 16384, where
 /// 200–1000 are measured at tol = 1e-10).
 fn max_iterations(n: usize) -> usize {
@@ -275,17 +292,7 @@ fn solve_grid(
             allowed: "0 < tol < 1",
         });
     }
-    let minimum = min_points_per_wavelength(&profile);
-    if !n.is_power_of_two() || n < minimum || n > MAX_POINTS_PER_WAVELENGTH {
-        return Err(BemError::Grid {
-            points: n,
-            minimum,
-            why: format!(
-                "16 points on the wavelength of the highest order {}, at least 64, at most 2^24",
-                profile.max_order()
-            ),
-        });
-    }
+    check_grid(&profile, n)?;
     let full_contact = full_contact_pressure_on(&profile, body)?;
     if p_over_estar >= full_contact {
         return Err(BemError::FullContact {
@@ -296,14 +303,20 @@ fn solve_grid(
     let s: Vec<f64> = (0..n).map(|i| -profile.y(i as f64 / n as f64)).collect();
     let mut k_op = grid::GridCompliance::on(n, body)?;
     let gap_tol = tol * profile.amplitude_sum();
-    polonsky_keer::solve(&s, p_over_estar, &mut k_op, gap_tol, max_iterations(n)).map_err(
-        |stalled| BemError::NoConvergence {
-            p_over_estar,
-            points: n,
-            iterations: stalled.iterations,
-            residual: stalled.residual,
-            tol,
-            reason: stalled.reason,
-        },
+    polonsky_keer::solve(
+        None,
+        &s,
+        p_over_estar,
+        &mut k_op,
+        gap_tol,
+        max_iterations(n),
     )
+    .map_err(|stalled| BemError::NoConvergence {
+        p_over_estar,
+        points: n,
+        iterations: stalled.iterations,
+        residual: stalled.residual,
+        tol,
+        reason: stalled.reason,
+    })
 }

@@ -48,50 +48,26 @@ enum DisplacementState {
 }
 
 /// Solves for the pressure on the grid (see the module doc). `s` is the rigid depth below the
-/// peak (λ), `p_mean` the mean pressure (E*), `gap_tol` the absolute gap tolerance (λ).
+/// peak (λ), `p_mean` the mean pressure (E*), `gap_tol` the absolute gap tolerance (λ). The
+/// iteration starts from the uniform pressure, or from `initial` (non-negative, a positive sum;
+/// rescaled to the mean first): a nearby solution's pressure, so that a sequence of close
+/// problems (the frictional solver's alternation, [`super::frictional_contact`]) starts each
+/// from the last.
 pub(super) fn solve(
+    initial: Option<Vec<f64>>,
     s: &[f64],
     p_mean: f64,
     k_op: &mut GridCompliance,
     gap_tol: f64,
     max_iterations: usize,
 ) -> Result<GridSolution, Stalled> {
-    iterate(
-        vec![p_mean; s.len()],
-        s,
-        p_mean,
-        k_op,
-        gap_tol,
-        max_iterations,
-    )
-}
-
-/// [`solve`] from the initial pressure `p` (non-negative, a positive sum; rescaled to the mean
-/// `p_mean` first): a nearby solution's pressure, so that a sequence of close problems (the
-/// frictional solver's alternation, [`super::frictional_contact`]) starts each from the last.
-pub(super) fn solve_from(
-    mut p: Vec<f64>,
-    s: &[f64],
-    p_mean: f64,
-    k_op: &mut GridCompliance,
-    gap_tol: f64,
-    max_iterations: usize,
-) -> Result<GridSolution, Stalled> {
-    if rescale_to_mean(&mut p, p_mean).is_none() {
-        p = vec![p_mean; s.len()];
-    }
-    iterate(p, s, p_mean, k_op, gap_tol, max_iterations)
-}
-
-/// The iteration of [`solve`] from the pressure `p` (mean `p_mean`).
-fn iterate(
-    mut p: Vec<f64>,
-    s: &[f64],
-    p_mean: f64,
-    k_op: &mut GridCompliance,
-    gap_tol: f64,
-    max_iterations: usize,
-) -> Result<GridSolution, Stalled> {
+    let mut p = match initial {
+        Some(mut p) => match rescale_to_mean(&mut p, p_mean) {
+            Some(_) => p,
+            None => vec![p_mean; s.len()],
+        },
+        None => vec![p_mean; s.len()],
+    };
     let n = s.len();
     let mut t = vec![0.0; n];
     let mut g = vec![0.0; n];

@@ -753,16 +753,27 @@ fn fenced_ranges(text: &str) -> Vec<std::ops::Range<usize>> {
     ranges
 }
 
-fn inline_markers(text: &str) -> Result<Vec<InlineMarker<'_>>, String> {
+/// A comment marker `OPEN PATH: REST -->` outside fenced code: its line, where it starts, its
+/// path and the rest (runs of white space read as one space).
+struct RawMarker {
+    line: usize,
+    start: usize,
+    path: String,
+    rest: String,
+}
+
+/// Every marker opened by `open` in `text`; `form` names the marker's form in the message of one
+/// that is not `PATH: REST`.
+fn raw_markers(text: &str, open: &str, form: &str) -> Result<Vec<RawMarker>, String> {
     let fenced = fenced_ranges(text);
     let mut found = Vec::new();
     let mut from = 0;
-    while let Some(found_at) = text[from..].find(INLINE_OPEN) {
+    while let Some(found_at) = text[from..].find(open) {
         let start = from + found_at;
         let line = text[..start].matches('\n').count() + 1;
-        let body_start = start + INLINE_OPEN.len();
+        let body_start = start + open.len();
         let Some(end) = text[body_start..].find("-->") else {
-            return Err(format!("line {line}: `{INLINE_OPEN}` without `-->`"));
+            return Err(format!("line {line}: `{open}` without `-->`"));
         };
         from = body_start + end + 3;
         if fenced.iter().any(|r| r.contains(&start)) {
@@ -772,19 +783,29 @@ fn inline_markers(text: &str) -> Result<Vec<InlineMarker<'_>>, String> {
             .split_whitespace()
             .collect::<Vec<_>>()
             .join(" ");
-        let Some((csv, template)) = body.split_once(':') else {
-            return Err(format!(
-                "line {line}: marker `{body}` is not `= PATH: TEMPLATE`"
-            ));
+        let Some((path, rest)) = body.split_once(':') else {
+            return Err(format!("line {line}: marker `{body}` is not `{form}`"));
         };
-        found.push(InlineMarker {
+        found.push(RawMarker {
             line,
-            csv: csv.trim().to_string(),
-            template: template.trim().to_string(),
-            before: &text[..start],
+            start,
+            path: path.trim().to_string(),
+            rest: rest.trim().to_string(),
         });
     }
     Ok(found)
+}
+
+fn inline_markers(text: &str) -> Result<Vec<InlineMarker<'_>>, String> {
+    Ok(raw_markers(text, INLINE_OPEN, "= PATH: TEMPLATE")?
+        .into_iter()
+        .map(|m| InlineMarker {
+            line: m.line,
+            csv: m.path,
+            template: m.rest,
+            before: &text[..m.start],
+        })
+        .collect())
 }
 
 /// Checks the inline markers of one doc against the CSVs `load` gives: the number of markers
@@ -909,36 +930,14 @@ struct FindingMarker {
 const FINDING_OPEN: &str = "<!-- ?";
 
 fn finding_markers(text: &str) -> Result<Vec<FindingMarker>, String> {
-    let fenced = fenced_ranges(text);
-    let mut found = Vec::new();
-    let mut from = 0;
-    while let Some(found_at) = text[from..].find(FINDING_OPEN) {
-        let start = from + found_at;
-        let line = text[..start].matches('\n').count() + 1;
-        let body_start = start + FINDING_OPEN.len();
-        let Some(end) = text[body_start..].find("-->") else {
-            return Err(format!("line {line}: `{FINDING_OPEN}` without `-->`"));
-        };
-        from = body_start + end + 3;
-        if fenced.iter().any(|r| r.contains(&start)) {
-            continue;
-        }
-        let body = text[body_start..body_start + end]
-            .split_whitespace()
-            .collect::<Vec<_>>()
-            .join(" ");
-        let Some((csv, condition)) = body.split_once(':') else {
-            return Err(format!(
-                "line {line}: marker `{body}` is not `? PATH: CONDITION`"
-            ));
-        };
-        found.push(FindingMarker {
-            line,
-            csv: csv.trim().to_string(),
-            condition: condition.trim().to_string(),
-        });
-    }
-    Ok(found)
+    Ok(raw_markers(text, FINDING_OPEN, "? PATH: CONDITION")?
+        .into_iter()
+        .map(|m| FindingMarker {
+            line: m.line,
+            csv: m.path,
+            condition: m.rest,
+        })
+        .collect())
 }
 
 /// The comparison operators of a condition, the two-character ones first.

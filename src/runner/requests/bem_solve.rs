@@ -11,7 +11,7 @@ use crate::profile::Profile;
 use crate::runner::requests::input_checks::InputError;
 use crate::runner::requests::request_error::RequestError;
 use crate::runner::requests::solve_outcome::{CycleEnergy, SolveOutcome, SolveRow};
-use crate::runner::requests::solve_request::SolveRequest;
+use crate::runner::requests::solve_request::{refused, SolveRequest};
 use std::ops::ControlFlow;
 
 /// Loading points when the request names none (`--points`).
@@ -40,16 +40,6 @@ pub struct PreparedBemSolve {
     pub law: InterfaceLaw,
     pub grid_points: usize,
     pub curve: CurveRequest,
-}
-
-/// `flag` refused at `value` for `reason`.
-fn refused(flag: &str, value: impl std::fmt::Display, reason: &str) -> RequestError {
-    InputError::Refused {
-        flag: flag.into(),
-        value: value.to_string(),
-        reason: reason.into(),
-    }
-    .into()
 }
 
 impl SolveRequest {

@@ -258,7 +258,7 @@ impl SolveRequest {
 }
 
 /// The flag `flag` refused at `value` for `reason`.
-fn refused(flag: &str, value: impl std::fmt::Display, reason: &str) -> RequestError {
+pub(crate) fn refused(flag: &str, value: impl std::fmt::Display, reason: &str) -> RequestError {
     InputError::Refused {
         flag: flag.into(),
         value: value.to_string(),
