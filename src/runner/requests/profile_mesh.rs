@@ -89,6 +89,29 @@ mod tests {
             .map_err(|e| e.to_string())
     }
 
+    /// A profile steeper than the verified finite-strain limit (Σ 2π AR_k = 2.199 > 1.885) is
+    /// refused by the solver's check under finite kinematics, on the mesh that resolves it, and
+    /// taken under linear kinematics, which has no slope limit.
+    #[test]
+    fn the_slope_limit_is_finite_strains_alone() {
+        let p: crate::profile::Profile = "1:0.05,4:0.1,16:0.2".parse().unwrap();
+        let linear = SolveRequest {
+            kinematics: crate::fe::Kinematics::Linear,
+            ..SolveRequest::with_profile(&p)
+        }
+        .prepare()
+        .unwrap();
+        assert!(fe::validate(&linear.problem, &linear.options).is_ok());
+        let finite = LayerProblem {
+            kinematics: crate::fe::Kinematics::Finite,
+            ..linear.problem
+        };
+        assert!(matches!(
+            fe::validate(&finite, &linear.options),
+            Err(fe::SolveError::ProfileTooSteep { .. })
+        ));
+    }
+
     #[test]
     fn a_profile_without_mesh_gets_the_coarsest_resolving_mesh_and_one_coarser_is_refused() {
         let chosen = prepared("1:0.1,8:0.05", None).unwrap();
