@@ -101,7 +101,8 @@ fn proportional_loading_has_the_self_similar_stick_zone() {
 /// encloses no area), while the work friction does at the face is the backward-Euler slip of
 /// finite increments, falling as the increments shrink (measured 8.3e-8, 3.3e-8, 1.2e-8 E*λ²
 /// for 10, 20, 40 loading points at AR 0.01, μ 0.5, ν 0.3, a/λ 0.3, N 4096; |∮ p̄ dδ| ≤ 3e-15): the audit says
-/// the dissipation of such a loop is an artefact of the step, not physics.
+/// the dissipation of such a loop is an artefact of the step, not physics. Here, N 2048, halving
+/// the steps (8 → 16 loading points) takes the face work from 1.09e-7 to 4.46e-8 (ratio 0.41).
 #[test]
 fn a_normal_loop_dissipates_only_through_its_steps() {
     let profile = Profile::sinusoid(0.01);
@@ -131,6 +132,11 @@ fn a_normal_loop_dissipates_only_through_its_steps() {
     }
     let ratio =
         fine.face_dissipation_over_estar_lambda2() / coarse.face_dissipation_over_estar_lambda2();
+    eprintln!(
+        "face work: 8 points {:e}, 16 points {:e}, ratio {ratio}",
+        coarse.face_dissipation_over_estar_lambda2(),
+        fine.face_dissipation_over_estar_lambda2()
+    );
     assert!(
         ratio > 0.25 && ratio < 0.7,
         "dissipation ratio {ratio} on halving the steps"

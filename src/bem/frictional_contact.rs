@@ -27,7 +27,7 @@
 //! 1. the normal problem for `p` at `q` fixed: frictionless contact of the shifted surface
 //!    `s + β K H q` ([`super::polonsky_keer`], from the last pressure);
 //! 2. the tangential problem for `q` at `p` fixed: the bound-constrained minimum of
-//!    `½ qᵀKq + qᵀ(−β K H p − u_x⁰)` with `|q| ≤ f(p)` ([`super::shear_cg`]), whose gradient is the
+//!    `½ qᵀKq + qᵀ(−β K H p − u_x⁰)` with `|q| ≤ f(p)` ([`super::shear_active_set`]), whose gradient is the
 //!    slip and whose optimality conditions are the law.
 //!
 //! [`NormalCoupling::Goodman`] drops `β K H q` from step 1 (Goodman's approximation: the
@@ -40,7 +40,7 @@
 use super::grid::GridCompliance;
 use super::polonsky_keer::{self, Stalled};
 use super::ElasticBody;
-use super::{edges, shear_cg, BemError};
+use super::{edges, shear_active_set, BemError};
 use crate::profile::Profile;
 
 /// Whether the shear traction acts back on the normal problem.
@@ -125,8 +125,6 @@ pub struct Increment {
     pub patches: Vec<[f64; 2]>,
     /// Total contact length over λ.
     pub contact_fraction: f64,
-    /// Contact points on the grid.
-    pub contact_points: usize,
     /// Stick length over λ: the runs of contact points below their slip threshold, each half a
     /// grid step beyond its end points and cut at its patch's edges ([`stick_intervals`]).
     pub stick_fraction: f64,
@@ -163,6 +161,8 @@ pub struct FrictionalContact {
     beta: f64,
     depth: Vec<f64>,
     k_op: GridCompliance,
+    /// The relative tolerance and the absolute one it gives gaps and slips (`tol · Σ Δ_k`, λ).
+    tol: f64,
     tol_abs: f64,
     full_contact: f64,
     committed: FrictionalState,
@@ -181,6 +181,7 @@ impl FrictionalContact {
             beta: dundurs_beta(problem.poisson),
             depth,
             k_op: GridCompliance::on(n, problem.body)?,
+            tol: problem.tol,
             tol_abs: problem.tol * profile.amplitude_sum(),
             full_contact: super::full_contact_pressure_on(&profile, problem.body)?,
             committed: FrictionalState {
@@ -223,7 +224,7 @@ impl FrictionalContact {
             points: n,
             iterations: s.iterations,
             residual: s.residual,
-            tol: self.tol_abs,
+            tol: self.tol,
             reason: s.reason,
         };
         let mut q = self.committed.shear_over_estar.clone();
@@ -231,7 +232,8 @@ impl FrictionalContact {
         let mut shifted = self.depth.clone();
         let mut scratch = vec![0.0; n];
         let mut iterations = 0;
-        let max_iterations = 1000 + 20 * (n as f64).sqrt() as usize;
+        let max_iterations = super::max_iterations(n);
+        let mut change = f64::INFINITY;
         for pass in 1..=MAX_PASSES {
             if self.coupling == NormalCoupling::Full && self.beta != 0.0 {
                 self.k_op.apply_hilbert(&q, &mut scratch);
@@ -260,7 +262,7 @@ impl FrictionalContact {
                 .zip(&self.committed.tangential_displacement_over_lambda)
                 .map(|(&hp, &u0)| -self.beta * hp - u0)
                 .collect();
-            let shear = shear_cg::solve(
+            let shear = shear_active_set::solve(
                 q.clone(),
                 &b,
                 &bound,
@@ -270,7 +272,7 @@ impl FrictionalContact {
             )
             .map_err(stalled)?;
             iterations += shear.iterations;
-            let change = q
+            change = q
                 .iter()
                 .zip(&shear.shear)
                 .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
@@ -292,7 +294,7 @@ impl FrictionalContact {
         }
         Err(stalled(Stalled {
             iterations: MAX_PASSES,
-            residual: f64::NAN,
+            residual: change * self.k_op.diagonal() / self.tol_abs,
             reason: "the normal–tangential alternation did not settle",
         }))
     }
@@ -332,7 +334,6 @@ impl FrictionalContact {
             .collect();
         Increment {
             p_over_estar: p.iter().sum::<f64>() / n as f64,
-            contact_points: p.iter().filter(|&&pi| pi > 0.0).count(),
             state: FrictionalState {
                 pressure_over_estar: p,
                 shear_over_estar: q,

@@ -47,7 +47,7 @@ pub mod frictional_contact;
 pub mod frictional_curve;
 mod grid;
 mod polonsky_keer;
-mod shear_cg;
+mod shear_active_set;
 #[cfg(test)]
 mod solver_tests;
 
@@ -221,9 +221,10 @@ pub(crate) fn check_grid(profile: &Profile, n: usize) -> Result<(), BemError> {
     Ok(())
 }
 
-/// The Polonsky–Keer iteration cap for `n` points: `1000 + 20√N` (3560 at N = 16384, where
+/// The conjugate-gradient iteration cap for `n` points (Polonsky–Keer, and the stick-zone solves
+/// of the frictional solver): `1000 + 20√N` (3560 at N = 16384, where
 /// 200–1000 are measured at tol = 1e-10).
-fn max_iterations(n: usize) -> usize {
+pub(super) fn max_iterations(n: usize) -> usize {
     1000 + 20 * (n as f64).sqrt() as usize
 }
 

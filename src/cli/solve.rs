@@ -9,7 +9,7 @@ use wavy::defaults;
 use wavy::fe::{Kinematics, MeshLevel, SolveOptions};
 use wavy::profile::Profile;
 use wavy::runner::requests::request_error::RequestError;
-use wavy::runner::requests::solve_outcome::{ExtraColumn, SolveRow};
+use wavy::runner::requests::solve_outcome::SolveRow;
 use wavy::runner::requests::solve_request::{PreparedSolve, SolveRequest};
 use wavy::runner::requests::solver::Solver;
 
@@ -250,11 +250,7 @@ fn solve_bem(args: &SolveArgs, out: &mut impl Write) -> Result<ExitCode> {
     }
     let prepared = args.request().prepare_bem()?;
     let extra = prepared.request.extra_column();
-    let header = wavy::fe::CurvePoint::CSV_HEADER;
-    match extra {
-        ExtraColumn::Branch => writeln!(out, "{header},branch")?,
-        _ => writeln!(out, "{header}")?,
-    }
+    writeln!(out, "{}", prepared.request.csv_header())?;
     let mut write_error = None;
     let result = prepared.run(&mut |row| {
         if write_error.is_none() {

@@ -66,13 +66,18 @@ pub fn proportional_stick_ratio(mu: f64, beta: f64) -> f64 {
         beta * e - mu * (kp_k - kp_e)
     };
     // excess → −∞ as k → 0 and = β > 0 at k = 1
-    let (mut lo, mut hi) = (0.0f64, 1.0f64);
-    for _ in 0..200 {
+    root_of_rising(0.0, 1.0, 200, excess)
+}
+
+/// The root of `f` between `lo` (where `f < 0`) and `hi` (where `f ≥ 0`), by at most
+/// `iterations` bisections, stopping when the interval cannot shrink further.
+fn root_of_rising(mut lo: f64, mut hi: f64, iterations: usize, f: impl Fn(f64) -> f64) -> f64 {
+    for _ in 0..iterations {
         let mid = 0.5 * (lo + hi);
         if mid <= lo || mid >= hi {
             break;
         }
-        if excess(mid) < 0.0 {
+        if f(mid) < 0.0 {
             lo = mid;
         } else {
             hi = mid;
@@ -88,12 +93,17 @@ fn hilbert_of_signed_hertz(xi: f64) -> f64 {
     (2.0 + c * ((1.0 - c) / (1.0 + c)).ln()) / std::f64::consts::PI
 }
 
+/// Midpoint-rule integral of `f` over `[0, span]` on `n` points.
+fn midpoint(span: f64, n: usize, f: impl Fn(f64) -> f64) -> f64 {
+    let h = span / n as f64;
+    (0..n).map(|i| f((i as f64 + 0.5) * h)).sum::<f64>() * h
+}
+
 /// Midpoint-rule integral over `θ ∈ [0, π]` (the substitution `ξ = k cos θ` that removes
 /// `1/√(k² − ξ²)`), on `n` points: the log singularity of [`hilbert_of_signed_hertz`] at `ξ = 0`
 /// falls between points.
 fn over_theta(n: usize, f: impl Fn(f64) -> f64) -> f64 {
-    let h = std::f64::consts::PI / n as f64;
-    (0..n).map(|i| f((i as f64 + 0.5) * h)).sum::<f64>() * h
+    midpoint(std::f64::consts::PI, n, f)
 }
 
 /// The incremental stick ratio's two conditions at the trial ratio `k` (module doc): the
@@ -127,19 +137,12 @@ pub fn incremental_stick_ratio(mu: f64, beta: f64) -> f64 {
     if mu == 0.0 {
         return 0.0;
     }
-    let (mut lo, mut hi) = (1e-6f64, 1.0 - 1e-6);
-    if incremental_conditions(mu, beta, hi).1 < 0.0 {
+    let (lo, hi) = (1e-6f64, 1.0 - 1e-6);
+    let root_coefficient = |k: f64| incremental_conditions(mu, beta, k).1;
+    if root_coefficient(hi) < 0.0 {
         return hi;
     }
-    for _ in 0..48 {
-        let mid = 0.5 * (lo + hi);
-        if incremental_conditions(mu, beta, mid).1 < 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
+    root_of_rising(lo, hi, 48, root_coefficient)
 }
 
 #[cfg(test)]
@@ -148,9 +151,7 @@ mod tests {
 
     /// Midpoint-rule quadrature of a smooth integrand on `[0, π/2]`.
     fn quad(f: impl Fn(f64) -> f64) -> f64 {
-        let n = 20_000;
-        let h = std::f64::consts::FRAC_PI_2 / n as f64;
-        (0..n).map(|i| f((i as f64 + 0.5) * h)).sum::<f64>() * h
+        midpoint(std::f64::consts::FRAC_PI_2, 20_000, f)
     }
 
     /// The AGM values against the defining integrals, and the tabulated `K(1/√2) = 1.854075`,

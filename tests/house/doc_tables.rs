@@ -815,36 +815,47 @@ fn check_inline(
     text: &str,
     load: &mut dyn FnMut(&str) -> Result<Csv, String>,
 ) -> (usize, Vec<String>) {
-    let markers = match inline_markers(text) {
+    check_each(
+        doc,
+        inline_markers(text),
+        |m| (m.line, format!("inline marker (from {})", m.csv)),
+        |m| {
+            let csv = load(&m.csv)?;
+            let all: Vec<&Vec<String>> = csv.rows.iter().collect();
+            let want = normalise(&render(&csv, &all, &m.template)?);
+            let have = normalise(m.before);
+            if want.is_empty() || !have.ends_with(&want) {
+                let chars: Vec<char> = have.chars().collect();
+                let shown = want.chars().count() + 40;
+                let tail: String = chars[chars.len().saturating_sub(shown)..].iter().collect();
+                return Ok(Some(format!(
+                    "the text before the marker ends `…{tail}`, the CSV gives `{want}`"
+                )));
+            }
+            Ok(None)
+        },
+    )
+}
+
+/// Checks each of a doc's markers (or reports why they could not be read): the number checked
+/// and a message per failure, `doc:line: what: why`. `check` gives `Ok(Some(why))` for a marker
+/// the doc contradicts and `Err` for one that cannot be evaluated.
+fn check_each<M>(
+    doc: &str,
+    markers: Result<Vec<M>, String>,
+    locate: impl Fn(&M) -> (usize, String),
+    mut check: impl FnMut(&M) -> Result<Option<String>, String>,
+) -> (usize, Vec<String>) {
+    let markers = match markers {
         Ok(m) => m,
         Err(e) => return (0, vec![format!("{doc}: {e}")]),
     };
     let mut failures = Vec::new();
     for m in &markers {
-        let at = format!("{doc}:{}: inline marker (from {})", m.line, m.csv);
-        let csv = match load(&m.csv) {
-            Ok(c) => c,
-            Err(e) => {
-                failures.push(format!("{at}: {e}"));
-                continue;
-            }
-        };
-        let all: Vec<&Vec<String>> = csv.rows.iter().collect();
-        let want = match render(&csv, &all, &m.template) {
-            Ok(w) => normalise(&w),
-            Err(e) => {
-                failures.push(format!("{at}: {e}"));
-                continue;
-            }
-        };
-        let have = normalise(m.before);
-        if want.is_empty() || !have.ends_with(&want) {
-            let chars: Vec<char> = have.chars().collect();
-            let shown = want.chars().count() + 40;
-            let tail: String = chars[chars.len().saturating_sub(shown)..].iter().collect();
-            failures.push(format!(
-                "{at}: the text before the marker ends `…{tail}`, the CSV gives `{want}`"
-            ));
+        let (line, what) = locate(m);
+        match check(m) {
+            Ok(None) => {}
+            Ok(Some(why)) | Err(why) => failures.push(format!("{doc}:{line}: {what}: {why}")),
         }
     }
     (markers.len(), failures)
@@ -1009,21 +1020,12 @@ fn check_findings(
     text: &str,
     load: &mut dyn FnMut(&str) -> Result<Csv, String>,
 ) -> (usize, Vec<String>) {
-    let markers = match finding_markers(text) {
-        Ok(m) => m,
-        Err(e) => return (0, vec![format!("{doc}: {e}")]),
-    };
-    let mut failures = Vec::new();
-    for m in &markers {
-        let at = format!("{doc}:{}: finding (from {})", m.line, m.csv);
-        let result = load(&m.csv).and_then(|csv| check_condition(&csv, &m.condition));
-        match result {
-            Ok(None) => {}
-            Ok(Some(why)) => failures.push(format!("{at}: {why}")),
-            Err(e) => failures.push(format!("{at}: {e}")),
-        }
-    }
-    (markers.len(), failures)
+    check_each(
+        doc,
+        finding_markers(text),
+        |m| (m.line, format!("finding (from {})", m.csv)),
+        |m| load(&m.csv).and_then(|csv| check_condition(&csv, &m.condition)),
+    )
 }
 
 /// The bullets of a doc's section `## TITLE` (each `- ` line with the indented lines under it)

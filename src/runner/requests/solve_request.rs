@@ -114,6 +114,16 @@ impl SolveRequest {
         }
     }
 
+    /// The CSV header of `wavy solve` (either solver).
+    pub fn csv_header(&self) -> String {
+        let extra = match self.extra_column() {
+            ExtraColumn::None => "",
+            ExtraColumn::ErrorEstimate => ",error_estimate",
+            ExtraColumn::Branch => ",branch",
+        };
+        format!("{}{extra}", CurvePoint::CSV_HEADER)
+    }
+
     /// Every input checked (in the command line's order), the mesh chosen: the
     /// finite-element solve to run (a boundary-element request: [`Self::prepare_bem`]).
     pub fn prepare(&self) -> Result<PreparedSolve, RequestError> {
@@ -317,12 +327,7 @@ impl PreparedSolve {
 
     /// The CSV header of `wavy solve`.
     pub fn csv_header(&self) -> String {
-        let extra = match self.extra_column() {
-            ExtraColumn::None => "",
-            ExtraColumn::ErrorEstimate => ",error_estimate",
-            ExtraColumn::Branch => ",branch",
-        };
-        format!("{}{extra}", CurvePoint::CSV_HEADER)
+        self.request.csv_header()
     }
 
     fn outcome(&self, rows: Vec<SolveRow>, work: SolveWork) -> SolveOutcome {
