@@ -38,7 +38,10 @@ fn westergaard_a(p_over_estar: f64) -> f64 {
 fn element_ends(pb: &LayerProblem, opts: &SolveOptions) -> (Vec<CurvePoint>, Vec<CurvePoint>) {
     let run = |phi| {
         let o = SolveOptions {
-            edge_rule: EdgeRule::Fraction(phi),
+            contact: ContactOptions {
+                edge_rule: EdgeRule::Fraction(phi),
+                ..opts.contact
+            },
             ..*opts
         };
         match solve_curve(pb, &o, &mut |_| ControlFlow::Continue(())) {
@@ -142,7 +145,10 @@ fn calibrate_aspect() {
                     first_layer_over_dx,
                 },
                 until_a_over_lambda: 0.47,
-                edge_rule,
+                contact: ContactOptions {
+                    edge_rule,
+                    ..ContactOptions::default()
+                },
                 ..SolveOptions::default()
             };
             solve_curve(&pb, &o, &mut |_| ControlFlow::Continue(()))
@@ -319,12 +325,12 @@ fn main() {
     opts.grading.first_layer_over_dx = env("FIRST", &opts.grading.first_layer_over_dx.to_string())
         .parse()
         .unwrap();
-    opts.edge_rule = match env("RULE", "fraction").as_str() {
+    opts.contact.edge_rule = match env("RULE", "fraction").as_str() {
         "power" => EdgeRule::GapPower,
         "periodic" => EdgeRule::PeriodicGap,
         _ => EdgeRule::default(),
     };
-    opts.tangent_predictor = env("PRED", "tangent") == "tangent";
+    opts.steps.tangent_predictor = env("PRED", "tangent") == "tangent";
     if std::env::var_os("ASPECT_CALIB").is_some() {
         calibrate_aspect();
         return;

@@ -7,12 +7,12 @@
 //!
 //! Run: `cargo run --release --example fig3_work [-- --no-branch-switch] [-- --points FILE]`.
 //! `--no-branch-switch` turns the semismooth choice of the friction branches off
-//! (`SolveOptions::semismooth_friction`); `--points FILE` writes every point
+//! (`NewtonOptions::semismooth_friction`); `--points FILE` writes every point
 //! (`AR τ a/λ p̄/E*`, 13 significant digits) to compare two builds' curves.
 use rayon::prelude::*;
 use std::ops::ControlFlow;
 use std::path::Path;
-use wavy::fe::{solve_curve, SolveOptions};
+use wavy::fe::{solve_curve, NewtonOptions, SolveOptions};
 use wavy::runner::{load_spec, RunOptions};
 
 const SPEC: &str = "experiments/fig3_fe_vs_model.toml";
@@ -34,7 +34,10 @@ fn main() {
         .par_iter()
         .map(|case| {
             let opts = SolveOptions {
-                semismooth_friction,
+                newton: NewtonOptions {
+                    semismooth_friction,
+                    ..case.options.newton
+                },
                 ..case.options
             };
             solve_curve(&case.problem, &opts, &mut |_| ControlFlow::Continue(())).unwrap_or_else(

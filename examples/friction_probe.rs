@@ -17,7 +17,9 @@
 
 use std::ops::ControlFlow;
 use std::time::Instant;
-use wavy::fe::{solve_with_states, Interface, Kinematics, MeshLevel, SolveOptions, StepState};
+use wavy::fe::{
+    solve_with_states, Interface, Kinematics, MeshLevel, NewtonOptions, SolveOptions, StepState,
+};
 
 fn env(name: &str, default: &str) -> String {
     std::env::var(name).unwrap_or_else(|_| default.to_string())
@@ -71,11 +73,14 @@ fn main() {
         problem.kinematics = Kinematics::Linear;
     }
     let mut opts = SolveOptions {
-        residual_rtol: number("RTOL", "1e-10"),
-        loose_residual_rtol: number("LOOSE", "1e-5"),
-        semismooth_friction: env("SEMI", "1") == "1",
-        max_edge_line_search: number("EDGE_LS", "8") as usize,
-        max_active_set_updates: number("AS_UPDATES", "40") as usize,
+        newton: NewtonOptions {
+            residual_rtol: number("RTOL", "1e-10"),
+            loose_residual_rtol: number("LOOSE", "1e-5"),
+            semismooth_friction: env("SEMI", "1") == "1",
+            max_edge_line_search: number("EDGE_LS", "8") as usize,
+            max_active_set_updates: number("AS_UPDATES", "40") as usize,
+            ..NewtonOptions::default()
+        },
         ..SolveOptions::default()
     };
     opts.grading.peak_ratio = number("PEAK", "4");

@@ -13,7 +13,7 @@
 //!
 //! Run: `make bench` (after a release build; `--wavy` names the binary of step 2).
 //! `--no-branch-switch` measures steps 1 and 3 without the semismooth choice of the
-//! friction branches (`SolveOptions::semismooth_friction` off): the same build with and
+//! friction branches (`NewtonOptions::semismooth_friction` off): the same build with and
 //! without it.
 use std::ops::ControlFlow;
 use std::path::PathBuf;
@@ -21,7 +21,9 @@ use std::time::Instant;
 #[path = "../benches/common/mod.rs"]
 mod common;
 use common::peak_memory_kb;
-use wavy::fe::{solve_curve, Curve, Interface, Kinematics, LayerProblem, MeshLevel, SolveOptions};
+use wavy::fe::{
+    solve_curve, Curve, Interface, Kinematics, LayerProblem, MeshLevel, NewtonOptions, SolveOptions,
+};
 use wavy::runner::scenes::speed_accuracy::time_tiers::median;
 
 const CHILD: &str = "WAVY_SPEED_TABLE_CHILD";
@@ -46,7 +48,10 @@ fn problem(ar: f64, tau_max_over_estar: f64) -> LayerProblem {
 fn options(mesh: MeshLevel) -> SolveOptions {
     SolveOptions {
         mesh,
-        semismooth_friction: std::env::var_os(NO_BRANCH_SWITCH).is_none(),
+        newton: NewtonOptions {
+            semismooth_friction: std::env::var_os(NO_BRANCH_SWITCH).is_none(),
+            ..Default::default()
+        },
         ..Default::default()
     }
 }

@@ -48,10 +48,12 @@ pub mod contact;
 pub mod convergence;
 pub mod curve;
 pub mod error;
+pub mod input_ranges;
 pub mod interrupt;
 pub mod linsys;
 pub mod model;
 pub mod newton;
+pub mod options;
 pub mod shear_test;
 pub mod stepping;
 
@@ -69,6 +71,7 @@ pub use curve::{
 pub use error::{CurveFailure, SolveError};
 pub use model::material::{estar_over_g, poisson_ratio};
 pub use model::mesh::{Grading, MeshLevel, MeshLevelParseError};
+pub use options::{ContactOptions, NewtonOptions, SolveOptions, StepOptions};
 pub use stepping::loading::Stepping;
 pub use stepping::step_state::StepState;
 
@@ -148,120 +151,6 @@ impl LayerProblem {
     }
 }
 
-/// Numerical options.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct SolveOptions {
-    /// Stop once the contact half-width reaches this `a/λ` (in `(0, ½)`).
-    pub until_a_over_lambda: f64,
-    /// Instead: load until the mean pressure `p̄/E*` is this (> 0): the last point is the
-    /// state at this mean pressure (within 10⁻⁹ relative), not an edge event; `until_a_over_lambda`
-    /// is then the largest contact half-width allowed on the way (a curve that reaches it
-    /// first is incomplete). For a profile the cap is full contact instead: its outermost
-    /// patch edge reaches ½ when the valley's crest touches, long before.
-    pub until_p_over_estar: Option<f64>,
-    /// Instead: load until the contact fraction (total contact length over λ,
-    /// [`patches`]) reaches this (in `(0, 1)`): the last point is the first node event at or
-    /// beyond it (once every node touches, the first of the slab steps that let the last openings
-    /// close, `stepping::loading`); `until_a_over_lambda` is then not a stop. A profile's counterpart of
-    /// `until_a_over_lambda`.
-    #[serde(default)]
-    pub until_contact_fraction: Option<f64>,
-    /// How the load steps from one contact event to the next ([`Stepping`]).
-    #[serde(default)]
-    pub stepping: Stepping,
-    /// Mesh resolution.
-    pub mesh: MeshLevel,
-    /// Mesh grading.
-    pub grading: Grading,
-    /// Contact-edge location rule.
-    pub edge_rule: EdgeRule,
-    /// Target advance of `a/λ` per load step: the next edge node is the first one at
-    /// least this far beyond the current edge. The default 0 steps node by node, which
-    /// is the cheapest: skipping nodes makes the skipped ones enter contact in the
-    /// middle of a solve, which costs many more Newton iterations per step
-    /// (docs/performance.md).
-    pub da_target: f64,
-    /// First slab-displacement increment in units of the amplitude `Δ`.
-    pub first_step_over_amplitude: f64,
-    /// Largest growth factor of the trial displacement increment in the secant
-    /// fallback of the edge search.
-    pub max_step_growth: f64,
-    /// Maximum consecutive halvings of a failing step.
-    pub max_step_cuts: usize,
-    /// Maximum number of load steps.
-    pub max_steps: usize,
-    /// Maximum Newton iterations per active-set pass.
-    pub max_newton_iterations: usize,
-    /// Maximum line-search halvings.
-    pub max_line_search: usize,
-    /// Maximum line-search halvings of the bordered edge solve. A bordered step that
-    /// needs more is a poor start, and the regula-falsi search takes over sooner than
-    /// after [`SolveOptions::max_line_search`] halvings, with the same results.
-    pub max_edge_line_search: usize,
-    /// Edge search: relative gap tolerance (w.r.t. the target node's initial gap).
-    pub edge_gap_rtol: f64,
-    /// Edge search: solve for the event's slab displacement with the bordered Newton method (`d` as
-    /// an unknown) first, falling back to the secant search if it fails.
-    pub bordered_edge_solve: bool,
-    /// Use the tangent (Euler) predictor (else extrapolate the last increment).
-    pub tangent_predictor: bool,
-    /// With friction, choose each node's stick/slip branch in the Newton step by where
-    /// the step lands (semismooth Newton, [`friction_step`]); else the
-    /// branch of the current state.
-    pub semismooth_friction: bool,
-    /// Edge search: maximum trial slab displacements per step.
-    pub max_edge_iterations: usize,
-    /// Maximum active-set updates per load step.
-    pub max_active_set_updates: usize,
-    /// Relative residual tolerance (w.r.t. the largest nodal force).
-    pub residual_rtol: f64,
-    /// Relative residual tolerance of Newton passes whose active set may still change.
-    pub loose_residual_rtol: f64,
-    /// Absolute residual tolerance in units of `(G + κ) λ` (the round-off floor of the
-    /// nodal forces grows with `κ`).
-    pub residual_atol: f64,
-    /// Newton corrections below this (`∞`-norm, units of λ) count as converged.
-    pub increment_atol: f64,
-    /// Release threshold: `λ < −multiplier_rtol · max|λ|`.
-    pub multiplier_rtol: f64,
-    /// Activation threshold: penetration deeper than this times `Δ`.
-    pub gap_tolerance_over_amplitude: f64,
-}
-
-impl Default for SolveOptions {
-    fn default() -> Self {
-        Self {
-            until_a_over_lambda: 0.45,
-            until_p_over_estar: None,
-            until_contact_fraction: None,
-            stepping: Stepping::Auto,
-            mesh: MeshLevel::Default,
-            grading: Grading::default(),
-            edge_rule: EdgeRule::default(),
-            da_target: 0.0,
-            first_step_over_amplitude: 0.005,
-            max_step_growth: 3.0,
-            max_step_cuts: 12,
-            max_steps: 2000,
-            max_newton_iterations: 30,
-            max_line_search: 40,
-            max_edge_line_search: 8,
-            max_active_set_updates: 40,
-            edge_gap_rtol: 1e-6,
-            max_edge_iterations: 60,
-            bordered_edge_solve: true,
-            tangent_predictor: true,
-            semismooth_friction: true,
-            residual_rtol: 1e-10,
-            loose_residual_rtol: 1e-5,
-            residual_atol: 1e-13,
-            increment_atol: 1e-14,
-            multiplier_rtol: 1e-9,
-            gap_tolerance_over_amplitude: 1e-10,
-        }
-    }
-}
-
 fn check_range(
     field: &'static str,
     value: f64,
@@ -281,52 +170,17 @@ fn check_range(
 
 /// Validate the inputs.
 pub fn validate(problem: &LayerProblem, opts: &SolveOptions) -> Result<(), SolveError> {
-    check_range(
-        "aspect_ratio",
-        problem.aspect_ratio,
-        problem.aspect_ratio > 0.0,
-        "> 0",
-    )?;
-    check_range(
-        "thickness_over_lambda",
-        problem.thickness_over_lambda,
-        problem.thickness_over_lambda > 0.0,
-        "> 0",
-    )?;
-    check_range(
-        "kappa_over_g",
-        problem.kappa_over_g,
-        problem.kappa_over_g > 0.0,
-        "> 0",
-    )?;
-    check_range(
-        "until_a_over_lambda",
-        opts.until_a_over_lambda,
-        opts.until_a_over_lambda > 0.0 && opts.until_a_over_lambda < 0.5,
-        "(0, 0.5)",
-    )?;
+    input_ranges::ASPECT_RATIO.check(problem.aspect_ratio)?;
+    input_ranges::THICKNESS_OVER_LAMBDA.check(problem.thickness_over_lambda)?;
+    input_ranges::KAPPA_OVER_G.check(problem.kappa_over_g)?;
+    input_ranges::UNTIL_A_OVER_LAMBDA.check(opts.until_a_over_lambda)?;
     if let Interface::CoulombOrowan(f) = problem.interface {
-        check_range(
-            "friction_coefficient",
-            f.friction_coefficient,
-            f.friction_coefficient > 0.0,
-            "> 0",
-        )?;
-        check_range(
-            "tau_max_over_estar",
-            f.tau_max_over_estar,
-            f.tau_max_over_estar > 0.0,
-            "> 0",
-        )?;
-        check_range(
-            "elastic_slip_over_element",
-            f.elastic_slip_over_element,
-            f.elastic_slip_over_element > 0.0,
-            "> 0",
-        )?;
+        input_ranges::FRICTION_COEFFICIENT.check(f.friction_coefficient)?;
+        input_ranges::TAU_MAX_OVER_ESTAR.check(f.tau_max_over_estar)?;
+        input_ranges::ELASTIC_SLIP_OVER_ELEMENT.check(f.elastic_slip_over_element)?;
     }
     if let Some(c) = opts.until_contact_fraction {
-        check_range("until_contact_fraction", c, c > 0.0 && c < 1.0, "(0, 1)")?;
+        input_ranges::UNTIL_CONTACT_FRACTION.check(c)?;
         check_range(
             "until_contact_fraction",
             c,
@@ -335,32 +189,17 @@ pub fn validate(problem: &LayerProblem, opts: &SolveOptions) -> Result<(), Solve
         )?;
     }
     if let Some(p) = opts.until_p_over_estar {
-        check_range("until_p_over_estar", p, p > 0.0, "> 0")?;
+        input_ranges::UNTIL_P_OVER_ESTAR.check(p)?;
     }
-    check_range("da_target", opts.da_target, opts.da_target >= 0.0, ">= 0")?;
-    if let EdgeRule::Fraction(phi) = opts.edge_rule {
-        check_range(
-            "edge_rule.fraction",
-            phi,
-            (0.0..=1.0).contains(&phi),
-            "[0, 1]",
-        )?;
+    input_ranges::DA_TARGET.check(opts.steps.da_target)?;
+    if let EdgeRule::Fraction(phi) = opts.contact.edge_rule {
+        input_ranges::EDGE_FRACTION.check(phi)?;
     }
     let (nx, ny) = opts.mesh.counts();
     check_range("mesh.nx", nx as f64, nx >= 2, ">= 2")?;
     check_range("mesh.ny", ny as f64, ny >= 1, ">= 1")?;
-    check_range(
-        "grading.peak_ratio",
-        opts.grading.peak_ratio,
-        opts.grading.peak_ratio >= 1.0,
-        ">= 1",
-    )?;
-    check_range(
-        "grading.first_layer_over_dx",
-        opts.grading.first_layer_over_dx,
-        opts.grading.first_layer_over_dx > 0.0,
-        "> 0",
-    )?;
+    input_ranges::PEAK_RATIO.check(opts.grading.peak_ratio)?;
+    input_ranges::FIRST_LAYER_OVER_DX.check(opts.grading.first_layer_over_dx)?;
     validate_profile(&problem.profile(), problem.kinematics, nx, opts.grading)
 }
 

@@ -96,7 +96,9 @@ fn block_slides_at_tau_max_when_orowan_governs() {
     assert!((l - 1.0).abs() < 1e-3, "face length / width = {l}");
 }
 
-use wavy::fe::{solve_curve, Curve, Interface, LayerProblem, MeshLevel, SolveOptions};
+use wavy::fe::{
+    solve_curve, Curve, Interface, LayerProblem, MeshLevel, NewtonOptions, SolveOptions,
+};
 
 fn wavy_curve(ar: f64, tau_max_over_estar: f64, mesh: MeshLevel) -> Curve {
     let opts = SolveOptions {
@@ -115,7 +117,7 @@ fn curve_with(ar: f64, tau_max_over_estar: f64, opts: &SolveOptions) -> Curve {
 }
 
 /// The semismooth choice of the friction branches in the Newton step
-/// (`SolveOptions::semismooth_friction`, on by default) changes the path to each
+/// (`NewtonOptions::semismooth_friction`, on by default) changes the path to each
 /// equilibrium, not the equilibrium: at AR 0.3, τ_max/E* 0.2 (coarse mesh, to a/λ 0.4)
 /// every point of the curve with it matches the curve without it to 10⁻⁸ relative (the
 /// Newton tolerance is 10⁻¹⁰ of the nodal forces; this test prints the largest difference),
@@ -126,7 +128,10 @@ fn semismooth_branch_choice_changes_the_path_not_the_curve() {
     let opts = |semismooth_friction| SolveOptions {
         mesh: MeshLevel::Coarse,
         until_a_over_lambda: 0.4,
-        semismooth_friction,
+        newton: NewtonOptions {
+            semismooth_friction,
+            ..Default::default()
+        },
         ..Default::default()
     };
     let (with, without) = (

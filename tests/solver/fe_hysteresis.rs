@@ -6,7 +6,7 @@
 use std::ops::ControlFlow;
 use wavy::fe::{
     cycle_work_over_estar_lambda2, solve_cycle, Curve, Interface, Kinematics, LayerProblem,
-    MeshLevel, SolveError, SolveOptions,
+    MeshLevel, NewtonOptions, SolveError, SolveOptions,
 };
 use wavy::runner::scenes::hysteresis::CLOSURE_RTOL;
 
@@ -27,7 +27,10 @@ fn problem(aspect_ratio: f64, tau_max_over_estar: f64) -> LayerProblem {
 fn options(mesh: MeshLevel, residual_rtol: f64) -> SolveOptions {
     SolveOptions {
         mesh,
-        residual_rtol,
+        newton: NewtonOptions {
+            residual_rtol,
+            ..NewtonOptions::default()
+        },
         until_a_over_lambda: 0.4,
         ..SolveOptions::default()
     }

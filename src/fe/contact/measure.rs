@@ -70,7 +70,7 @@ pub(crate) fn measure(
     let stick_runs = stick_runs(model, st);
     let stick = stick_zone(&stick_runs, &patches, peak_x(model, st));
     let a_over_lambda = match edge {
-        EdgeAt::Node(k) => edge_position(model, st, k, opts.edge_rule),
+        EdgeAt::Node(k) => edge_position(model, st, k, opts.contact.edge_rule),
         EdgeAt::OutermostPatch(_) => patches.last().map_or(0.0, |p| p[1]),
     };
     Measured {
@@ -111,7 +111,12 @@ pub(crate) fn measure_between_events(
         .assemble(model, st, false)
         .expect("converged state is not inverted");
     let edge = if model.indenter.profile.is_sinusoid() {
-        EdgeAt::Node(loaded_edge_node(model, st, &f.grad, opts.multiplier_rtol))
+        EdgeAt::Node(loaded_edge_node(
+            model,
+            st,
+            &f.grad,
+            opts.contact.multiplier_rtol,
+        ))
     } else {
         EdgeAt::OutermostPatch(None)
     };

@@ -38,13 +38,13 @@ pub(crate) fn contact_patches(
     opts: &SolveOptions,
     event: Option<usize>,
 ) -> (Vec<[f64; 2]>, Vec<TravellingEdge>) {
-    let rule = opts.edge_rule;
+    let rule = opts.contact.edge_rule;
     let lam = model.multipliers(st, grad);
     let scale = lam.iter().fold(0.0_f64, |m, l| m.max(l.abs()));
     let loaded: Vec<bool> = lam
         .iter()
         .enumerate()
-        .map(|(i, &l)| scale > 0.0 && l > opts.multiplier_rtol * scale && event != Some(i))
+        .map(|(i, &l)| scale > 0.0 && l > opts.contact.multiplier_rtol * scale && event != Some(i))
         .collect();
     if !model.indenter.profile.is_sinusoid() {
         return profile_patches(model, st, rule, (&lam, &loaded), event, runs(&loaded));

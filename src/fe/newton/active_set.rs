@@ -122,11 +122,11 @@ fn active_set_passes(
     // Passes whose active set may still change are converged loosely
     // (`loose_residual_rtol`); the pass that confirms the set is converged tightly.
     let mut loose = true;
-    for _ in 0..opts.max_active_set_updates {
+    for _ in 0..opts.newton.max_active_set_updates {
         let rtol = if loose {
-            opts.loose_residual_rtol
+            opts.newton.loose_residual_rtol
         } else {
-            opts.residual_rtol
+            opts.newton.residual_rtol
         };
         total += newton_pass(model, asm, st, rtol)?;
         let f = asm.assemble(model, st, false).ok_or(StepFail::Inverted {
@@ -136,11 +136,13 @@ fn active_set_passes(
         let release_force = release_forces(model, st, &f.grad);
         let gaps = model.gaps(st);
         let scale = release_scale(&release_force);
-        let gap_tol = opts.gap_tolerance_over_amplitude * model.indenter.amplitude();
+        let gap_tol = opts.contact.gap_tolerance_over_amplitude * model.indenter.amplitude();
         let mut changed = false;
         for k in 0..st.active.len() {
             if st.active[k] {
-                if release_force[k] < -opts.multiplier_rtol * scale && hold.active != Some(k) {
+                if release_force[k] < -opts.contact.multiplier_rtol * scale
+                    && hold.active != Some(k)
+                {
                     st.active[k] = false;
                     changed = true;
                 }
@@ -158,6 +160,6 @@ fn active_set_passes(
         model.enforce_constraints(st);
     }
     Err(StepFail::Cycling {
-        iterations: opts.max_active_set_updates,
+        iterations: opts.newton.max_active_set_updates,
     })
 }

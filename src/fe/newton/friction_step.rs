@@ -42,7 +42,7 @@ const MAX_BRANCH_SWITCHES: usize = 8;
 /// Solve the Newton system of iteration `iteration` on the last assembled tangent (`asm`),
 /// `rhs[0] = −r` and, if present, `rhs[1] = −∂r/∂d`; `direction` maps the solutions to the
 /// step `δq` (for the bordered solve, a combination of the two). With friction and
-/// [`SolveOptions::semismooth_friction`], the pieces of the friction law are chosen by where
+/// [`NewtonOptions::semismooth_friction`], the pieces of the friction law are chosen by where
 /// the step lands (module documentation); otherwise the assembled tangent is solved as it
 /// is. A failed solve ends the Newton solve ([`StepFail::Linear`]).
 pub(crate) fn solve_newton_step(
@@ -58,7 +58,7 @@ pub(crate) fn solve_newton_step(
         message: e.to_string(),
     };
     let law = match model.friction {
-        Some(law) if opts.semismooth_friction => law,
+        Some(law) if opts.newton.semismooth_friction => law,
         _ => return asm.sys.solve(rhs).map_err(failed),
     };
     let rows = &asm.friction_rows;

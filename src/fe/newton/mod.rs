@@ -57,8 +57,8 @@ fn at_round_off_floor(dq_norm: f64, res: f64, prev: f64, tol: f64) -> bool {
 /// correct step drops below that and would be rejected without the slack.
 const ENERGY_ROUNDOFF_SLACK: f64 = 1e-13;
 
-/// Step-length factor per backtracking step (halving: [`SolveOptions::max_line_search`]
-/// and [`SolveOptions::max_edge_line_search`] count halvings).
+/// Step-length factor per backtracking step (halving: [`NewtonOptions::max_line_search`]
+/// and [`NewtonOptions::max_edge_line_search`] count halvings).
 const LINE_SEARCH_BACKTRACK: f64 = 0.5;
 
 /// Residual bound of Newton convergence, `rtol · f_e + residual_atol · (G + κ)`, with
@@ -69,7 +69,7 @@ pub(crate) fn residual_tolerance(
     rtol: f64,
     force_scale: f64,
 ) -> f64 {
-    let atol = opts.residual_atol * (model.mat.g + model.mat.kappa);
+    let atol = opts.newton.residual_atol * (model.mat.g + model.mat.kappa);
     rtol * force_scale + atol
 }
 
@@ -166,7 +166,7 @@ pub(crate) fn newton(
 ) -> Result<usize, StepFail> {
     let mut last_res = f64::NAN;
     let mut last_step = f64::INFINITY;
-    for it in 0..=opts.max_newton_iterations {
+    for it in 0..=opts.newton.max_iterations {
         interrupted(it, last_res)?;
         // convergence check on the forces alone (cached after the line search), the
         // matrix only when another iteration follows
@@ -182,7 +182,7 @@ pub(crate) fn newton(
         if res <= tol || at_round_off_floor(last_step, res, prev, tol) {
             return Ok(it);
         }
-        if it == opts.max_newton_iterations || !res.is_finite() {
+        if it == opts.newton.max_iterations || !res.is_finite() {
             break;
         }
         let f = asm
@@ -192,7 +192,7 @@ pub(crate) fn newton(
         solve_newton_step(model, asm, opts, &mut rhs, it, |x| x[0].clone())?;
         let dq = rhs.pop().expect("one right-hand side");
         last_step = inf_norm(&dq);
-        if last_step <= opts.increment_atol {
+        if last_step <= opts.newton.increment_atol {
             // correction below the round-off of the positions: converged
             *st = model.updated(st, &dq, 1.0);
             return Ok(it + 1);
@@ -216,7 +216,7 @@ pub(crate) fn newton(
             }
         };
         let trial_at = |m: &Model, alpha: f64| m.updated(st, &dq, alpha);
-        match line_search(model, asm, opts.max_line_search, trial_at, decrease) {
+        match line_search(model, asm, opts.newton.max_line_search, trial_at, decrease) {
             Some(t) => *st = t,
             None => {
                 return Err(StepFail::Diverged {
@@ -228,7 +228,7 @@ pub(crate) fn newton(
         }
     }
     Err(StepFail::Diverged {
-        iteration: opts.max_newton_iterations,
+        iteration: opts.newton.max_iterations,
         residual: last_res,
         reason: "maximum Newton iterations reached".into(),
     })
@@ -240,7 +240,7 @@ pub(crate) fn newton(
 const BORDERED_GAP_FRACTION: f64 = 0.5;
 
 /// Gap tolerance of the loose passes of the bordered solve (those whose active set may
-/// still change, see [`SolveOptions::loose_residual_rtol`]) over that of the tight pass:
+/// still change, see [`NewtonOptions::loose_residual_rtol`]) over that of the tight pass:
 /// they only need to settle the active set; the confirming pass converges the gap
 /// tightly. Safeguard value, not tuned.
 const LOOSE_GAP_FACTOR: f64 = 100.0;
@@ -281,7 +281,7 @@ pub(crate) fn newton_bordered(
     // step alone (fewer tangent assemblies: docs/performance.md)
     let potential = model.is_potential();
     let residual_merit = move |r: &[f64]| if potential { inf_norm(r) } else { l2_norm(r) };
-    for it in 0..=opts.max_newton_iterations {
+    for it in 0..=opts.newton.max_iterations {
         interrupted(it, last_res)?;
         // convergence check on the forces alone (cached after the line search), the
         // matrix only when another iteration follows
@@ -294,7 +294,7 @@ pub(crate) fn newton_bordered(
         let (c, _) = model.edge_constraint(st, k);
         let res = inf_norm(&f.resid);
         let prev = std::mem::replace(&mut last_res, res);
-        let gtol = if rtol > opts.residual_rtol {
+        let gtol = if rtol > opts.newton.residual_rtol {
             LOOSE_GAP_FACTOR * gap_tol
         } else {
             gap_tol
@@ -304,7 +304,7 @@ pub(crate) fn newton_bordered(
         if forces_converged && c.abs() <= gtol {
             return Ok(it);
         }
-        if it == opts.max_newton_iterations || !res.is_finite() || !c.is_finite() {
+        if it == opts.newton.max_iterations || !res.is_finite() || !c.is_finite() {
             break;
         }
         let f = asm
@@ -360,7 +360,13 @@ pub(crate) fn newton_bordered(
             m.enforce_constraints(&mut trial);
             m.updated(&trial, &dq, alpha)
         };
-        match line_search(model, asm, opts.max_edge_line_search, trial_at, decrease) {
+        match line_search(
+            model,
+            asm,
+            opts.newton.max_edge_line_search,
+            trial_at,
+            decrease,
+        ) {
             Some(t) => *st = t,
             None => {
                 return Err(StepFail::Diverged {
@@ -372,7 +378,7 @@ pub(crate) fn newton_bordered(
         }
     }
     Err(StepFail::Diverged {
-        iteration: opts.max_newton_iterations,
+        iteration: opts.newton.max_iterations,
         residual: last_res,
         reason: "maximum Newton iterations reached (edge solve)".into(),
     })

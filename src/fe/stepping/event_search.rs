@@ -2,7 +2,7 @@
 //!
 //! The points of the load curve are *edge events*: the slab displacement `d` at which a
 //! chosen contact-face node `k` (by default the first free node; see
-//! [`SolveOptions::da_target`]) touches the indenter with zero contact force
+//! [`StepOptions::da_target`]) touches the indenter with zero contact force
 //! ([`next_target`]). Node `k` is kept free and the extra equation `g_k = 0` fixes `d`:
 //! first by the bordered Newton method ([`crate::fe::newton::newton_bordered`], `d` an
 //! unknown); if that fails, by a regula-falsi (Illinois) search on `d` with ordinary Newton
@@ -43,7 +43,7 @@ const SECANT_FRACTION_MAX: f64 = 0.98;
 /// Without a bracket and without a usable secant (no earlier trial with a larger open
 /// gap), the next trial advances by this many times the larger of the distance from the
 /// last event and the last event's increment (then bounded by
-/// [`SolveOptions::max_step_growth`]). Safeguard, not tuned.
+/// [`StepOptions::max_step_growth`]). Safeguard, not tuned.
 const BLIND_SPAN_FACTOR: f64 = 2.0;
 
 /// Smallest advance of an extrapolated trial over the largest allowed one: a secant
@@ -118,7 +118,8 @@ pub(crate) fn activate_touching_among(
 /// Gap tolerance of an event whose target starts at gap `g0`:
 /// `max(edge_gap_rtol · |g₀|, 10⁻¹⁵ Δ)` ([`EVENT_GAP_FLOOR_OVER_AMPLITUDE`]).
 pub(crate) fn event_gap_tolerance(model: &Model, opts: &SolveOptions, g0: f64) -> f64 {
-    (opts.edge_gap_rtol * g0.abs()).max(EVENT_GAP_FLOOR_OVER_AMPLITUDE * model.indenter.amplitude())
+    (opts.steps.edge_gap_rtol * g0.abs())
+        .max(EVENT_GAP_FLOOR_OVER_AMPLITUDE * model.indenter.amplitude())
 }
 
 /// Increment of `d` at which free node `k`, at gap `g0`, closes along the load tangent
@@ -158,7 +159,7 @@ pub(crate) struct EventSearch<'a> {
 
 impl EventSearch<'_> {
     /// The converged state at the event and the Newton iterations spent: the bordered
-    /// solve first (if [`SolveOptions::bordered_edge_solve`]; in committed sub-steps
+    /// solve first (if [`StepOptions::bordered_edge_solve`]; in committed sub-steps
     /// with friction), else the regula-falsi search.
     pub(crate) fn find(
         &self,
@@ -166,7 +167,7 @@ impl EventSearch<'_> {
         asm: &mut Assembly,
         step: usize,
     ) -> Result<(State, usize), SolveError> {
-        let bordered = if !self.opts.bordered_edge_solve {
+        let bordered = if !self.opts.steps.bordered_edge_solve {
             None
         } else if model.is_potential() {
             self.bordered(
@@ -251,7 +252,7 @@ impl EventSearch<'_> {
         let mut tangent = self.tangent.clone();
         let mut increment = self.first_increment;
         let mut spent = 0;
-        for _ in 0..=self.opts.max_step_cuts {
+        for _ in 0..=self.opts.steps.max_step_cuts {
             if let Some((st, it)) = self.bordered(
                 model,
                 asm,
@@ -303,12 +304,12 @@ impl EventSearch<'_> {
             at: self.from.clone(),
         };
         let mut search = RegulaFalsi::new(first, self.before.map(open_gap));
-        let mut cuts = StepCuts::new(opts.max_step_cuts);
+        let mut cuts = StepCuts::new(opts.steps.max_step_cuts);
         let (mut iters, mut evals) = (0, 0);
         let mut trial = self.from.d + self.first_increment;
         loop {
             evals += 1;
-            if evals > opts.max_edge_iterations {
+            if evals > opts.steps.max_edge_iterations {
                 return Err(SolveError::EdgeSearch {
                     step,
                     node: self.node,
@@ -343,7 +344,7 @@ impl EventSearch<'_> {
                                 &search,
                                 self.from.d,
                                 self.last_increment,
-                                opts.max_step_growth,
+                                opts.steps.max_step_growth,
                             )
                         });
                 }

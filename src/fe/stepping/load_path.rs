@@ -72,7 +72,7 @@ impl LoadPath {
             cur: model.initial_state(),
             prev: None,
             a: 0.0,
-            last_increment: opts.first_step_over_amplitude * model.indenter.amplitude(),
+            last_increment: opts.steps.first_step_over_amplitude * model.indenter.amplitude(),
             event_ratio: 1.0,
             points: Vec::new(),
             patch_edges: Vec::new(),

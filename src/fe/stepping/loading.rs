@@ -73,22 +73,27 @@ pub(crate) fn loading_branch(
     on_step: &mut OnStep<'_>,
 ) -> Result<LoadPath, Box<CurveFailure>> {
     let mut path = LoadPath::start(model, opts);
+    let sinusoid = model.indenter.profile.is_sinusoid();
     let targets = Targets {
         opts,
-        profile: !model.indenter.profile.is_sinusoid(),
+        profile: !sinusoid,
     };
-    let node_events =
-        opts.stepping == Stepping::NodeEvents || !model.indenter.profile.is_sinusoid();
+    let branch = Branch {
+        model,
+        opts,
+        estar,
+        events: Events::of(opts.stepping, sinusoid),
+    };
     let mut step = 1;
     while !targets.any_reached(&path) {
-        if step > opts.max_steps {
+        if step > opts.steps.max_steps {
             let error = SolveError::TooManySteps {
-                steps: opts.max_steps,
+                steps: opts.steps.max_steps,
                 a_over_lambda: path.a,
             };
             return Err(path.fail(model, error, on_step));
         }
-        let Some((k, tangent)) = next_event_node(model, asm, opts, &mut path, node_events) else {
+        let Some((k, tangent)) = branch.next_event_node(asm, &mut path) else {
             // every node touches: no event is left
             if opts.until_contact_fraction.is_some() {
                 let closed = load_past_full_contact(model, asm, opts, estar, &mut path, on_step);
@@ -98,36 +103,21 @@ pub(crate) fn loading_branch(
             }
             break;
         };
-        let event = find_event(model, asm, opts, &path, k, tangent, node_events, step)
-            .and_then(|found| settle_event(model, asm, opts, &path, found, node_events, step));
-        let mut settled = match event {
-            Ok(settled) => settled,
+        let point = branch.event_point(asm, &path, k, tangent, step);
+        let (point, on_target) = match point {
+            Ok(point) => point,
             Err(error) => return Err(path.fail(model, error, on_step)),
         };
-        let measured = measure_event(model, asm, opts, estar, &mut settled);
-        let SettledEvent {
-            state: st,
+        let EventPoint {
+            state,
+            measured,
             extrapolated,
             released,
-            node: k,
-            ..
-        } = settled;
-        let overshot = opts
-            .until_p_over_estar
-            .filter(|&t| measured.point.p_over_estar > t);
-        let (st, measured, extrapolated) = match overshot {
-            None => (st, measured, extrapolated),
-            Some(target) => match land_between(
-                model, asm, opts, estar, &path, k, st, measured, target, step,
-            ) {
-                Ok((st, landed)) => (st, landed, None),
-                Err(error) => return Err(path.fail(model, error, on_step)),
-            },
-        };
-        if let Err(error) = path.record(model, st, measured, (extrapolated, released), on_step) {
+        } = point;
+        if let Err(error) = path.record(model, state, measured, (extrapolated, released), on_step) {
             return Err(path.fail(model, error, on_step));
         }
-        if overshot.is_some() {
+        if on_target {
             break; // on the pressure target
         }
         step += 1;
@@ -273,28 +263,34 @@ impl Targets<'_> {
     }
 }
 
-/// The next event's node and the load tangent at the last event, or `None` at full contact:
-/// edge by edge, the first free node beyond the edge (nodes skipped because they touch enter
-/// the step active); with node events, the free node that closes first along the load tangent
-/// (every touching free node enters active).
-fn next_event_node(
-    model: &Model,
-    asm: &mut Assembly,
-    opts: &SolveOptions,
-    path: &mut LoadPath,
-    node_events: bool,
-) -> Option<(usize, Option<Vec<f64>>)> {
-    if node_events {
-        activate_touching_anywhere(model, &mut path.cur, path.released);
-        path.touching_before_step();
-        let tangent = tangent_at(model, asm, opts, &path.cur);
-        let k = earliest_touchdown(model, &path.cur, tangent.as_deref())?;
-        Some((k, tangent))
-    } else {
-        let k = next_target(model, &path.cur, path.a, opts.da_target)?;
-        activate_touching(model, &mut path.cur, k);
-        Some((k, tangent_at(model, asm, opts, &path.cur)))
+/// Which node's touchdown is the next event.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Events {
+    /// The first free node beyond the contact edge: a single sinusoid's one patch growing from
+    /// the peak.
+    EdgeByEdge,
+    /// Whichever free node touches first, wherever it lies; a release is an event too
+    /// ([`crate::fe::stepping::node_events`], [`crate::fe::stepping::release_events`]).
+    AnyNode,
+}
+
+impl Events {
+    /// The events of a [`Stepping`] choice: node events when asked for, or for a profile.
+    fn of(stepping: Stepping, sinusoid: bool) -> Events {
+        match (stepping, sinusoid) {
+            (Stepping::Auto, true) => Events::EdgeByEdge,
+            (Stepping::NodeEvents, _) | (Stepping::Auto, false) => Events::AnyNode,
+        }
     }
+}
+
+/// What every load step of one loading branch reads: the model, the options, the plane-strain
+/// modulus `E*` the points are measured in, and which node's touchdown is the next event.
+struct Branch<'a> {
+    model: &'a Model,
+    opts: &'a SolveOptions,
+    estar: f64,
+    events: Events,
 }
 
 /// A found event: the state where its node touches with zero force, the node, the Newton
@@ -304,56 +300,6 @@ struct Found {
     node: usize,
     iterations: usize,
     extrapolated: Option<f64>,
-}
-
-/// The slab displacement at which node `k` touches with zero force, predicted along the load
-/// tangent (scaled by the previous event's ratio of actual to extrapolated increment) and found
-/// by [`EventSearch`]. With node events, a node that touched on the way came first and becomes
-/// the target ([`passed_touchdowns`], at most [`MAX_RETARGETS`] times).
-#[allow(clippy::too_many_arguments)]
-fn find_event(
-    model: &Model,
-    asm: &mut Assembly,
-    opts: &SolveOptions,
-    path: &LoadPath,
-    mut k: usize,
-    tangent: Option<Vec<f64>>,
-    node_events: bool,
-    step: usize,
-) -> Result<Found, SolveError> {
-    let mut retargets = 0;
-    loop {
-        let gap0 = model.gaps(&path.cur)[k];
-        let extrapolated = tangent
-            .as_deref()
-            .and_then(|z| closing_increment(model, &path.cur, k, gap0, z));
-        let search = EventSearch {
-            opts,
-            from: &path.cur,
-            before: path.prev.as_ref(),
-            node: k,
-            gap0,
-            gap_tol: event_gap_tolerance(model, opts, gap0),
-            tangent: tangent.clone(),
-            first_increment: extrapolated.map_or(path.last_increment, |e| e * path.event_ratio),
-            last_increment: path.last_increment,
-        };
-        let (st, iterations) = search.find(model, asm, step)?;
-        match passed_touchdowns(model, &path.cur, &st, tangent.as_deref()) {
-            Some(j) if node_events && retargets < MAX_RETARGETS => {
-                retargets += 1;
-                k = j;
-            }
-            _ => {
-                return Ok(Found {
-                    state: st,
-                    node: k,
-                    iterations,
-                    extrapolated,
-                })
-            }
-        }
-    }
 }
 
 /// An event settled in equilibrium, before it is measured: the state, where its contact edge
@@ -368,96 +314,223 @@ struct SettledEvent {
     iterations: usize,
 }
 
-/// The found event in equilibrium: with node events, a contact node that the step released
-/// let go before node `k` touched, and the release is the event ([`first_release`]); else node
-/// `k` enters contact and the state is equilibrated.
-fn settle_event(
-    model: &Model,
-    asm: &mut Assembly,
-    opts: &SolveOptions,
-    path: &LoadPath,
-    found: Found,
-    node_events: bool,
-    step: usize,
-) -> Result<SettledEvent, SolveError> {
-    let Found {
-        state: mut st,
-        node: k,
-        mut iterations,
-        extrapolated,
-    } = found;
-    let release = match node_events {
-        true => first_release(model, asm, opts, &path.cur, &st, k)
-            .map_err(|f| f.into_error(step, st.d))?,
-        false => None,
-    };
-    if let Some(r) = release {
-        return Ok(SettledEvent {
-            state: r.state,
-            edge: EdgeAt::OutermostPatch(None),
-            released: Some(r.node),
-            extrapolated: None,
-            node: k,
-            iterations: iterations + r.iterations,
-        });
-    }
-    model.activate(&mut st, k);
-    model.enforce_constraints(&mut st);
-    iterations +=
-        equilibrate(model, asm, &mut st, opts, Hold::NONE).map_err(|f| f.into_error(step, st.d))?;
-    let edge = match node_events {
-        true => EdgeAt::OutermostPatch(Some(k)),
-        false => EdgeAt::Node(k),
-    };
-    Ok(SettledEvent {
-        state: st,
-        edge,
-        released: None,
-        extrapolated,
-        node: k,
-        iterations,
-    })
-}
-
-/// Commits the slip of a settled event and measures its point (its Newton iterations those of
-/// the event).
-fn measure_event(
-    model: &Model,
-    asm: &mut Assembly,
-    opts: &SolveOptions,
-    estar: f64,
-    event: &mut SettledEvent,
-) -> Measured {
-    model.commit_slip(&mut event.state);
-    let mut measured = measure(model, asm, &event.state, estar, event.edge, opts);
-    measured.point.newton_iterations = event.iterations;
-    measured
-}
-
-/// The event that overshoots the pressure target replaced by the state on it, between the last
-/// converged state and this event ([`land_on_pressure`]).
-#[allow(clippy::too_many_arguments)]
-fn land_between(
-    model: &Model,
-    asm: &mut Assembly,
-    opts: &SolveOptions,
-    estar: f64,
-    path: &LoadPath,
-    k: usize,
-    st: State,
+/// The point a load step adds to the curve: its state (slip committed), what was measured
+/// there, the tangent's predicted increment and the node a release event let go.
+struct EventPoint {
+    state: State,
     measured: Measured,
-    target: f64,
-    step: usize,
-) -> Result<(State, Measured), SolveError> {
-    let event = (st.d, measured.point.p_over_estar);
-    let overshoot = Overshoot {
-        below: &path.cur,
-        below_p_over_estar: path.points.last().map_or(0.0, |p| p.p_over_estar),
-        node: k,
-        event,
-    };
-    let (st, mut landed, it) = land_on_pressure(model, asm, opts, estar, overshoot, target)
-        .map_err(|f| f.into_error(step, event.0))?;
-    landed.point.newton_iterations = measured.point.newton_iterations + it;
-    Ok((st, landed))
+    extrapolated: Option<f64>,
+    released: Option<usize>,
+}
+
+impl Branch<'_> {
+    /// One load step's point, and whether it lies on the mean-pressure target: the event on
+    /// node `k` found, settled and measured; an event beyond the target replaced by the state on
+    /// it ([`Self::land_between`]).
+    fn event_point(
+        &self,
+        asm: &mut Assembly,
+        path: &LoadPath,
+        k: usize,
+        tangent: Option<Vec<f64>>,
+        step: usize,
+    ) -> Result<(EventPoint, bool), SolveError> {
+        let found = self.find_event(asm, path, k, tangent, step)?;
+        let mut settled = self.settle_event(asm, path, found, step)?;
+        let measured = self.measure_event(asm, &mut settled);
+        let overshot = self
+            .opts
+            .until_p_over_estar
+            .filter(|&t| measured.point.p_over_estar > t);
+        let point = EventPoint {
+            state: settled.state,
+            measured,
+            extrapolated: settled.extrapolated,
+            released: settled.released,
+        };
+        match overshot {
+            None => Ok((point, false)),
+            Some(target) => {
+                let overshoot = Overshoot {
+                    below: &path.cur,
+                    below_p_over_estar: path.points.last().map_or(0.0, |p| p.p_over_estar),
+                    node: settled.node,
+                    event: (point.state.d, point.measured.point.p_over_estar),
+                };
+                let (state, measured) = self.land_between(
+                    asm,
+                    overshoot,
+                    point.measured.point.newton_iterations,
+                    target,
+                    step,
+                )?;
+                let landed = EventPoint {
+                    state,
+                    measured,
+                    extrapolated: None,
+                    released: point.released,
+                };
+                Ok((landed, true))
+            }
+        }
+    }
+
+    /// The next event's node and the load tangent at the last event, or `None` at full
+    /// contact: edge by edge, the first free node beyond the edge (nodes skipped because they
+    /// touch enter the step active); with node events, the free node that closes first along the
+    /// load tangent (every touching free node enters active).
+    fn next_event_node(
+        &self,
+        asm: &mut Assembly,
+        path: &mut LoadPath,
+    ) -> Option<(usize, Option<Vec<f64>>)> {
+        let (model, opts) = (self.model, self.opts);
+        match self.events {
+            Events::AnyNode => {
+                activate_touching_anywhere(model, &mut path.cur, path.released);
+                path.touching_before_step();
+                let tangent = tangent_at(model, asm, opts, &path.cur);
+                let k = earliest_touchdown(model, &path.cur, tangent.as_deref())?;
+                Some((k, tangent))
+            }
+            Events::EdgeByEdge => {
+                let k = next_target(model, &path.cur, path.a, opts.steps.da_target)?;
+                activate_touching(model, &mut path.cur, k);
+                Some((k, tangent_at(model, asm, opts, &path.cur)))
+            }
+        }
+    }
+
+    /// The slab displacement at which node `k` touches with zero force, predicted along the
+    /// load tangent (scaled by the previous event's ratio of actual to extrapolated increment)
+    /// and found by [`EventSearch`]. With node events, a node that touched on the way came first
+    /// and becomes the target ([`passed_touchdowns`], at most [`MAX_RETARGETS`] times).
+    fn find_event(
+        &self,
+        asm: &mut Assembly,
+        path: &LoadPath,
+        mut k: usize,
+        tangent: Option<Vec<f64>>,
+        step: usize,
+    ) -> Result<Found, SolveError> {
+        let model = self.model;
+        let mut retargets = 0;
+        loop {
+            let gap0 = model.gaps(&path.cur)[k];
+            let extrapolated = tangent
+                .as_deref()
+                .and_then(|z| closing_increment(model, &path.cur, k, gap0, z));
+            let search = EventSearch {
+                opts: self.opts,
+                from: &path.cur,
+                before: path.prev.as_ref(),
+                node: k,
+                gap0,
+                gap_tol: event_gap_tolerance(model, self.opts, gap0),
+                tangent: tangent.clone(),
+                first_increment: extrapolated.map_or(path.last_increment, |e| e * path.event_ratio),
+                last_increment: path.last_increment,
+            };
+            let (st, iterations) = search.find(model, asm, step)?;
+            match passed_touchdowns(model, &path.cur, &st, tangent.as_deref()) {
+                Some(j) if self.events == Events::AnyNode && retargets < MAX_RETARGETS => {
+                    retargets += 1;
+                    k = j;
+                }
+                _ => {
+                    return Ok(Found {
+                        state: st,
+                        node: k,
+                        iterations,
+                        extrapolated,
+                    })
+                }
+            }
+        }
+    }
+
+    /// The found event in equilibrium: with node events, a contact node that the step released
+    /// let go before node `k` touched, and the release is the event ([`first_release`]); else
+    /// node `k` enters contact and the state is equilibrated.
+    fn settle_event(
+        &self,
+        asm: &mut Assembly,
+        path: &LoadPath,
+        found: Found,
+        step: usize,
+    ) -> Result<SettledEvent, SolveError> {
+        let (model, opts) = (self.model, self.opts);
+        let Found {
+            state: mut st,
+            node: k,
+            mut iterations,
+            extrapolated,
+        } = found;
+        let release = match self.events {
+            Events::AnyNode => first_release(model, asm, opts, &path.cur, &st, k)
+                .map_err(|f| f.into_error(step, st.d))?,
+            Events::EdgeByEdge => None,
+        };
+        if let Some(r) = release {
+            return Ok(SettledEvent {
+                state: r.state,
+                edge: EdgeAt::OutermostPatch(None),
+                released: Some(r.node),
+                extrapolated: None,
+                node: k,
+                iterations: iterations + r.iterations,
+            });
+        }
+        model.activate(&mut st, k);
+        model.enforce_constraints(&mut st);
+        iterations += equilibrate(model, asm, &mut st, opts, Hold::NONE)
+            .map_err(|f| f.into_error(step, st.d))?;
+        let edge = match self.events {
+            Events::AnyNode => EdgeAt::OutermostPatch(Some(k)),
+            Events::EdgeByEdge => EdgeAt::Node(k),
+        };
+        Ok(SettledEvent {
+            state: st,
+            edge,
+            released: None,
+            extrapolated,
+            node: k,
+            iterations,
+        })
+    }
+
+    /// Commits the slip of a settled event and measures its point (its Newton iterations those
+    /// of the event).
+    fn measure_event(&self, asm: &mut Assembly, event: &mut SettledEvent) -> Measured {
+        self.model.commit_slip(&mut event.state);
+        let mut measured = measure(
+            self.model,
+            asm,
+            &event.state,
+            self.estar,
+            event.edge,
+            self.opts,
+        );
+        measured.point.newton_iterations = event.iterations;
+        measured
+    }
+
+    /// The event that overshoots the pressure target replaced by the state on it, between the
+    /// last converged state and this event ([`land_on_pressure`]); its Newton iterations those
+    /// the event spent, `event_iterations`, and the landing's.
+    fn land_between(
+        &self,
+        asm: &mut Assembly,
+        overshoot: Overshoot<'_>,
+        event_iterations: usize,
+        target: f64,
+        step: usize,
+    ) -> Result<(State, Measured), SolveError> {
+        let event_d = overshoot.event.0;
+        let (st, mut landed, it) =
+            land_on_pressure(self.model, asm, self.opts, self.estar, overshoot, target)
+                .map_err(|f| f.into_error(step, event_d))?;
+        landed.point.newton_iterations = event_iterations + it;
+        Ok((st, landed))
+    }
 }

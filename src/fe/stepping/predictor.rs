@@ -17,7 +17,7 @@ pub(crate) fn load_tangent(model: &Model, asm: &mut Assembly, st: &State) -> Opt
     Some(z)
 }
 
-/// The load tangent of `st` for the predictor if [`SolveOptions::tangent_predictor`] is on
+/// The load tangent of `st` for the predictor if [`StepOptions::tangent_predictor`] is on
 /// ([`load_tangent`]).
 pub(crate) fn tangent_at(
     model: &Model,
@@ -25,7 +25,8 @@ pub(crate) fn tangent_at(
     opts: &SolveOptions,
     st: &State,
 ) -> Option<Vec<f64>> {
-    opts.tangent_predictor
+    opts.steps
+        .tangent_predictor
         .then(|| load_tangent(model, asm, st))
         .flatten()
 }

@@ -66,7 +66,7 @@ pub(crate) fn land_on_pressure(
     );
     search.beyond = Some((event.0, target - event.1));
     let mut iters = 0;
-    let mut cuts = StepCuts::new(opts.max_step_cuts);
+    let mut cuts = StepCuts::new(opts.steps.max_step_cuts);
     let mut next = search.next(0.0, 1.0).expect("bracketed by the event");
     for _ in 0..MAX_PRESSURE_TRIALS {
         let d = next;

@@ -57,7 +57,10 @@ fn release_force(
         .assemble(model, st, false)
         .expect("converged state is not inverted");
     let forces = release_forces(model, st, &f.grad);
-    (forces[node], opts.multiplier_rtol * release_scale(&forces))
+    (
+        forces[node],
+        opts.contact.multiplier_rtol * release_scale(&forces),
+    )
 }
 
 /// Where contact node `node` of the converged state `from` (compressive there) lets go on the
@@ -93,7 +96,7 @@ pub(crate) fn locate_release(
         return Ok(None);
     }
     search.beyond = Some((beyond_d, fb));
-    let mut cuts = StepCuts::new(opts.max_step_cuts);
+    let mut cuts = StepCuts::new(opts.steps.max_step_cuts);
     let mut next = search.next(0.0, 1.0).expect("bracketed");
     for _ in 0..MAX_RELEASE_TRIALS {
         let d = next;

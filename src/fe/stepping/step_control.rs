@@ -8,7 +8,7 @@
 //! start with the increment cut ([`StepCuts`]).
 
 /// A failed increment is cut by this factor before it is retried
-/// ([`crate::fe::SolveOptions::max_step_cuts`] counts the cuts): halving.
+/// ([`crate::fe::StepOptions::max_step_cuts`] counts the cuts): halving.
 pub(crate) const STEP_CUT_FACTOR: f64 = 0.5;
 
 /// Illinois modification of regula falsi: when the same end of the bracket is kept twice,

@@ -84,7 +84,7 @@ fn unload(
             unloading: points,
         })
     };
-    let mut cuts = StepCuts::new(opts.max_step_cuts);
+    let mut cuts = StepCuts::new(opts.steps.max_step_cuts);
     let mut steps = 0;
     let mut cur_p = path.points.last().map_or(0.0, |p| p.p_over_estar);
     // zero load: the round-off of p̄ relative to the largest load of the cycle
@@ -95,7 +95,7 @@ fn unload(
         let Some(&(target, scheduled)) = targets.last() else {
             // at d = 0 or beyond: done when no contact force is left
             let active = path.cur.active.iter().filter(|&&b| b).count();
-            if cur_p <= opts.residual_rtol * p_max || active == 0 {
+            if cur_p <= opts.newton.residual_rtol * p_max || active == 0 {
                 break;
             }
             let next = path.cur.d - retract_increment;
@@ -111,9 +111,9 @@ fn unload(
             continue;
         };
         steps += 1;
-        if steps > opts.max_steps {
+        if steps > opts.steps.max_steps {
             let error = SolveError::TooManySteps {
-                steps: opts.max_steps,
+                steps: opts.steps.max_steps,
                 a_over_lambda: path.a,
             };
             return Err(fail(path, points, error));

@@ -2,6 +2,7 @@
 //! the value and the allowed range: the one definition of these checks and messages, shared by
 //! `wavy solve` / `wavy eval` and the Python bindings (whose `ValueError` carries the same text).
 
+use crate::fe::input_ranges::InputRange;
 use crate::fe::MeshLevel;
 use thiserror::Error;
 
@@ -38,6 +39,15 @@ pub fn out_of_range(flag: &str, value: impl ToString, allowed: impl ToString) ->
         flag: flag.into(),
         value: value.to_string(),
         allowed: allowed.to_string(),
+    }
+}
+
+/// `Ok` when `value` is in the solver's `range` ([`crate::fe::input_ranges`]), else an error
+/// naming `flag` with the range's words.
+pub fn within(flag: &str, range: &InputRange, value: f64) -> Result<(), InputError> {
+    match range.holds(value) {
+        true => Ok(()),
+        false => Err(out_of_range(flag, value, range.allowed)),
     }
 }
 

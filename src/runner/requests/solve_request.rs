@@ -6,13 +6,14 @@
 
 use crate::accuracy::measured::{self, Choice};
 use crate::defaults;
+use crate::fe::input_ranges;
 use crate::fe::{
     self, CurvePoint, Kinematics, LayerProblem, LoadDirection, MeshLevel, SolveOptions, SolveWork,
 };
 use crate::profile::{FinerHarmonics, Profile};
 use crate::runner::requests::cost_estimate::{self, CostEstimate};
 use crate::runner::requests::input_checks::{
-    non_negative, out_of_range, positive, vtk_folder, InputError,
+    non_negative, positive, vtk_folder, within, InputError,
 };
 use crate::runner::requests::profile_mesh;
 use crate::runner::requests::request_error::RequestError;
@@ -153,23 +154,37 @@ impl SolveRequest {
     /// The ranges both solvers share, in the command line's order, and the combinations no
     /// solver takes.
     pub(crate) fn check_ranges(&self) -> Result<(), RequestError> {
-        positive("--ar", self.ar)?;
+        within("--ar", &input_ranges::ASPECT_RATIO, self.ar)?;
         positive("--estar-mpa", self.estar_mpa)?;
-        positive("--kappa-over-g", self.kappa_over_g)?;
-        positive("--thickness-over-lambda", self.thickness_over_lambda)?;
+        within(
+            "--kappa-over-g",
+            &input_ranges::KAPPA_OVER_G,
+            self.kappa_over_g,
+        )?;
+        let thickness = self.thickness_over_lambda;
+        within(
+            "--thickness-over-lambda",
+            &input_ranges::THICKNESS_OVER_LAMBDA,
+            thickness,
+        )?;
+        // zero is the frictionless interface here; a frictional one's μ and τ_max are > 0
         non_negative("--tau-max-mpa", self.tau_max_mpa)?;
         non_negative("--mu", self.mu)?;
         let x = self.until_a_over_lambda;
-        if !(x.is_finite() && x > 0.0 && x < 0.5) {
-            return Err(out_of_range("--until-a-over-lambda", x, "(0, 0.5)").into());
-        }
+        within(
+            "--until-a-over-lambda",
+            &input_ranges::UNTIL_A_OVER_LAMBDA,
+            x,
+        )?;
         if let Some(p) = self.until_p_over_estar {
-            positive("--until-p-over-estar", p)?;
+            within("--until-p-over-estar", &input_ranges::UNTIL_P_OVER_ESTAR, p)?;
         }
         if let Some(c) = self.until_contact_fraction {
-            if !(c.is_finite() && c > 0.0 && c < 1.0) {
-                return Err(out_of_range("--until-contact-fraction", c, "(0, 1)").into());
-            }
+            within(
+                "--until-contact-fraction",
+                &input_ranges::UNTIL_CONTACT_FRACTION,
+                c,
+            )?;
             if self.until_p_over_estar.is_some() {
                 return Err(refused(
                     "--until-contact-fraction",

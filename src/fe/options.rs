@@ -1,0 +1,172 @@
+//! The options of a solve, grouped by concern: what the curve loads to and on which mesh
+//! ([`SolveOptions`] itself), where the contact edge lies and when a node touches or lets go
+//! ([`ContactOptions`]), how the load steps ([`StepOptions`]), and how Newton converges a step
+//! ([`NewtonOptions`]). Each group's `Default` is the solver's setting.
+
+use serde::{Deserialize, Serialize};
+
+use crate::fe::contact::edge_rule::EdgeRule;
+use crate::fe::model::mesh::{Grading, MeshLevel};
+use crate::fe::stepping::loading::Stepping;
+
+/// The options of a solve: the curve's stop targets, its mesh, and the numerical settings by
+/// concern.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SolveOptions {
+    /// Stop once the contact half-width reaches this `a/λ` (in `(0, ½)`).
+    pub until_a_over_lambda: f64,
+    /// Instead: load until the mean pressure `p̄/E*` is this (> 0): the last point is the
+    /// state at this mean pressure (within 10⁻⁹ relative), not an edge event; `until_a_over_lambda`
+    /// is then the largest contact half-width allowed on the way (a curve that reaches it
+    /// first is incomplete). For a profile the cap is full contact instead: its outermost
+    /// patch edge reaches ½ when the valley's crest touches, long before.
+    pub until_p_over_estar: Option<f64>,
+    /// Instead: load until the contact fraction (total contact length over λ,
+    /// [`crate::fe::contact::patches`]) reaches this (in `(0, 1)`): the last point is the first
+    /// node event at or beyond it (once every node touches, the first of the slab steps that let
+    /// the last openings close, `stepping::loading`); `until_a_over_lambda` is then not a stop. A
+    /// profile's counterpart of `until_a_over_lambda`.
+    #[serde(default)]
+    pub until_contact_fraction: Option<f64>,
+    /// How the load steps from one contact event to the next ([`Stepping`]).
+    #[serde(default)]
+    pub stepping: Stepping,
+    /// Mesh resolution.
+    pub mesh: MeshLevel,
+    /// Mesh grading.
+    pub grading: Grading,
+    /// The contact edge and the contact set's tolerances.
+    pub contact: ContactOptions,
+    /// The load steps: their size, their cuts, the event search.
+    pub steps: StepOptions,
+    /// Newton's method and its convergence.
+    pub newton: NewtonOptions,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        Self {
+            until_a_over_lambda: 0.45,
+            until_p_over_estar: None,
+            until_contact_fraction: None,
+            stepping: Stepping::Auto,
+            mesh: MeshLevel::Default,
+            grading: Grading::default(),
+            contact: ContactOptions::default(),
+            steps: StepOptions::default(),
+            newton: NewtonOptions::default(),
+        }
+    }
+}
+
+/// Where the contact edge lies, and when a contact-face node enters or leaves contact.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ContactOptions {
+    /// Contact-edge location rule.
+    pub edge_rule: EdgeRule,
+    /// Release threshold: `λ < −multiplier_rtol · max|λ|`.
+    pub multiplier_rtol: f64,
+    /// Activation threshold: penetration deeper than this times `Δ`.
+    pub gap_tolerance_over_amplitude: f64,
+}
+
+impl Default for ContactOptions {
+    fn default() -> Self {
+        Self {
+            edge_rule: EdgeRule::default(),
+            multiplier_rtol: 1e-9,
+            gap_tolerance_over_amplitude: 1e-10,
+        }
+    }
+}
+
+/// The load steps: which event comes next, the first increment, how a failing step is cut,
+/// and how an event's slab displacement is found.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StepOptions {
+    /// Target advance of `a/λ` per load step: the next edge node is the first one at
+    /// least this far beyond the current edge. The default 0 steps node by node, which
+    /// is the cheapest: skipping nodes makes the skipped ones enter contact in the
+    /// middle of a solve, which costs many more Newton iterations per step
+    /// (docs/performance.md).
+    pub da_target: f64,
+    /// First slab-displacement increment in units of the amplitude `Δ`.
+    pub first_step_over_amplitude: f64,
+    /// Largest growth factor of the trial displacement increment in the secant
+    /// fallback of the edge search.
+    pub max_step_growth: f64,
+    /// Maximum consecutive halvings of a failing step.
+    pub max_step_cuts: usize,
+    /// Maximum number of load steps.
+    pub max_steps: usize,
+    /// Edge search: relative gap tolerance (w.r.t. the target node's initial gap).
+    pub edge_gap_rtol: f64,
+    /// Edge search: solve for the event's slab displacement with the bordered Newton method (`d` as
+    /// an unknown) first, falling back to the secant search if it fails.
+    pub bordered_edge_solve: bool,
+    /// Edge search: maximum trial slab displacements per step.
+    pub max_edge_iterations: usize,
+    /// Use the tangent (Euler) predictor (else extrapolate the last increment).
+    pub tangent_predictor: bool,
+}
+
+impl Default for StepOptions {
+    fn default() -> Self {
+        Self {
+            da_target: 0.0,
+            first_step_over_amplitude: 0.005,
+            max_step_growth: 3.0,
+            max_step_cuts: 12,
+            max_steps: 2000,
+            edge_gap_rtol: 1e-6,
+            bordered_edge_solve: true,
+            max_edge_iterations: 60,
+            tangent_predictor: true,
+        }
+    }
+}
+
+/// Newton's method within a load step: its iteration and line-search limits, the active-set
+/// passes, the convergence tolerances, and the choice of each friction node's piece of the law.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct NewtonOptions {
+    /// Maximum Newton iterations per active-set pass.
+    pub max_iterations: usize,
+    /// Maximum line-search halvings.
+    pub max_line_search: usize,
+    /// Maximum line-search halvings of the bordered edge solve. A bordered step that
+    /// needs more is a poor start, and the regula-falsi search takes over sooner than
+    /// after [`NewtonOptions::max_line_search`] halvings, with the same results.
+    pub max_edge_line_search: usize,
+    /// Maximum active-set updates per load step.
+    pub max_active_set_updates: usize,
+    /// Relative residual tolerance (w.r.t. the largest nodal force).
+    pub residual_rtol: f64,
+    /// Relative residual tolerance of Newton passes whose active set may still change.
+    pub loose_residual_rtol: f64,
+    /// Absolute residual tolerance in units of `(G + κ) λ` (the round-off floor of the
+    /// nodal forces grows with `κ`).
+    pub residual_atol: f64,
+    /// Newton corrections below this (`∞`-norm, units of λ) count as converged.
+    pub increment_atol: f64,
+    /// With friction, choose each node's stick/slip branch in the Newton step by where
+    /// the step lands (semismooth Newton, [`crate::fe::newton::friction_step`]); else the
+    /// branch of the current state.
+    pub semismooth_friction: bool,
+}
+
+impl Default for NewtonOptions {
+    fn default() -> Self {
+        Self {
+            max_iterations: 30,
+            max_line_search: 40,
+            max_edge_line_search: 8,
+            max_active_set_updates: 40,
+            residual_rtol: 1e-10,
+            loose_residual_rtol: 1e-5,
+            residual_atol: 1e-13,
+            increment_atol: 1e-14,
+            semismooth_friction: true,
+        }
+    }
+}
