@@ -339,4 +339,14 @@ impl SparseSystem {
     pub fn solve(&mut self, rhs: &mut [Vec<f64>]) -> Result<(), LinSolveError> {
         self.solve_switching_rows(rhs, 0, |_| None).map(|_| ())
     }
+
+    /// Solve `K xⱼ = bⱼ` again for the matrix of the last [`Self::solve`], unchanged since:
+    /// with the factorisation it left (no new one) when the matrix has no row updates, else
+    /// as [`Self::solve`] does.
+    pub fn solve_again(&mut self, rhs: &mut [Vec<f64>]) -> Result<(), LinSolveError> {
+        if self.updates.is_empty() && self.solve_symmetric_held(rhs)? {
+            return Ok(());
+        }
+        self.solve(rhs)
+    }
 }

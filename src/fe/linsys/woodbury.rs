@@ -44,7 +44,7 @@ impl RowUpdates {
     }
 
     /// `true` when the matrix is its symmetric part.
-    fn is_empty(&self) -> bool {
+    pub(super) fn is_empty(&self) -> bool {
         self.rows.is_empty()
     }
 

@@ -15,7 +15,7 @@ use crate::fe::error::StepFail;
 use crate::fe::model::{Model, State};
 use crate::fe::newton::active_set::{equilibrate, equilibrate_event, Hold};
 use crate::fe::newton::assembly::Assembly;
-use crate::fe::stepping::predictor::{predictor, tangent_at};
+use crate::fe::stepping::predictor::{predictor, tangent_at, LoadTangent};
 use crate::fe::stepping::step_control::{RegulaFalsi, StepCuts, Trial, STEP_CUT_FACTOR};
 use crate::fe::SolveOptions;
 
@@ -135,6 +135,37 @@ pub(crate) fn closing_increment(
     (rate < 0.0).then(|| g0 / -rate)
 }
 
+/// Increment of `d` at which free node `k`, at gap `g0`, closes along the load path
+/// `tangent`: the smallest positive root of `g₀ + ġ dd + ½ g̈ dd² = 0`, with `ġ = ∇c·q'` and
+/// `g̈ = ∇c·q''` where the path's curvature is known (the gap's own curvature in `x` left
+/// out: `|y_s''| dx²` is below the other terms' round-off at these steps), else
+/// [`closing_increment`]; `None` if the gap does not close along it.
+pub(crate) fn predicted_closing(
+    model: &Model,
+    st: &State,
+    k: usize,
+    g0: f64,
+    tangent: &LoadTangent,
+) -> Option<f64> {
+    let linear = closing_increment(model, st, k, g0, tangent)?;
+    let Some(w) = tangent.curvature() else {
+        return Some(linear);
+    };
+    let gap_rate = model.gap_rate_along(st, k);
+    let (rate, accel) = (gap_rate(tangent), gap_rate(w));
+    // g₀ + rate dd + ½ accel dd² = 0, rate < 0: the root nearest zero, by the stable form
+    let disc = rate * rate - 2.0 * accel * g0;
+    if disc < 0.0 {
+        return Some(linear);
+    }
+    let root = 2.0 * g0 / (-rate + disc.sqrt());
+    Some(if root.is_finite() && root > 0.0 {
+        root
+    } else {
+        linear
+    })
+}
+
 /// The search for one edge event, from the converged state of the last one.
 pub(crate) struct EventSearch<'a> {
     /// Numerical options.
@@ -150,7 +181,7 @@ pub(crate) struct EventSearch<'a> {
     /// Gap tolerance of the event ([`event_gap_tolerance`]).
     pub gap_tol: f64,
     /// Load tangent `∂q/∂d` at `from` (tangent predictor), if any.
-    pub tangent: Option<Vec<f64>>,
+    pub tangent: Option<LoadTangent>,
     /// First trial increment of `d` (units of λ).
     pub first_increment: f64,
     /// Increment of `d` of the last event (the scale of the regula-falsi search's advances).
@@ -175,7 +206,7 @@ impl EventSearch<'_> {
                 asm,
                 self.from,
                 self.before,
-                self.tangent.as_deref(),
+                self.tangent.as_ref(),
                 self.first_increment,
             )
         } else {
@@ -208,7 +239,7 @@ impl EventSearch<'_> {
         asm: &mut Assembly,
         base: &State,
         base_prev: Option<&State>,
-        tangent: Option<&[f64]>,
+        tangent: Option<&LoadTangent>,
         increment: f64,
     ) -> Result<(State, usize), StepFail> {
         match predictor(model, base, base_prev, increment, tangent) {
@@ -232,7 +263,7 @@ impl EventSearch<'_> {
         asm: &mut Assembly,
         base: &State,
         base_prev: Option<&State>,
-        tangent: Option<&[f64]>,
+        tangent: Option<&LoadTangent>,
         increment: f64,
     ) -> Option<(State, usize)> {
         predictor(model, base, base_prev, increment, tangent).and_then(|mut st| {
@@ -258,7 +289,7 @@ impl EventSearch<'_> {
                 asm,
                 &base,
                 base_prev.as_ref(),
-                tangent.as_deref(),
+                tangent.as_ref(),
                 increment,
             ) {
                 return Some((st, it + spent));
@@ -269,7 +300,7 @@ impl EventSearch<'_> {
                 asm,
                 &base,
                 base_prev.as_ref(),
-                tangent.as_deref(),
+                tangent.as_ref(),
                 increment,
             );
             if let Ok((mut st, it)) = sub {
@@ -321,7 +352,7 @@ impl EventSearch<'_> {
             let tangent = tangent_at(model, asm, opts, base);
             let base_prev = search.below_prev.as_ref().map(|p| &p.at);
             let increment = trial - base_d;
-            match self.held_free(model, asm, base, base_prev, tangent.as_deref(), increment) {
+            match self.held_free(model, asm, base, base_prev, tangent.as_ref(), increment) {
                 Err(f) => match cuts.cut(base_d, trial) {
                     Some(cut) => trial = cut,
                     None => return Err(f.into_error(step, trial)),

@@ -16,13 +16,13 @@ use crate::fe::model::{Model, State};
 use crate::fe::newton::active_set::{equilibrate, Hold};
 use crate::fe::newton::assembly::Assembly;
 use crate::fe::stepping::event_search::{
-    activate_touching, closing_increment, event_gap_tolerance, next_target, EventSearch,
+    activate_touching, event_gap_tolerance, next_target, predicted_closing, EventSearch,
 };
 use crate::fe::stepping::load_path::{LoadPath, OnStep};
 use crate::fe::stepping::node_events::{
     activate_touching_anywhere, earliest_touchdown, passed_touchdowns,
 };
-use crate::fe::stepping::predictor::{displacement_step, tangent_at};
+use crate::fe::stepping::predictor::{displacement_step, tangent_at, LoadTangent};
 use crate::fe::stepping::pressure_target::{land_on_pressure, Overshoot, PRESSURE_TARGET_RTOL};
 use crate::fe::stepping::release_events::first_release;
 use crate::fe::{Curve, SolveOptions};
@@ -332,7 +332,7 @@ impl Branch<'_> {
         asm: &mut Assembly,
         path: &LoadPath,
         k: usize,
-        tangent: Option<Vec<f64>>,
+        tangent: Option<LoadTangent>,
         step: usize,
     ) -> Result<(EventPoint, bool), SolveError> {
         let found = self.find_event(asm, path, k, tangent, step)?;
@@ -383,7 +383,7 @@ impl Branch<'_> {
         &self,
         asm: &mut Assembly,
         path: &mut LoadPath,
-    ) -> Option<(usize, Option<Vec<f64>>)> {
+    ) -> Option<(usize, Option<LoadTangent>)> {
         let (model, opts) = (self.model, self.opts);
         match self.events {
             Events::AnyNode => {
@@ -410,7 +410,7 @@ impl Branch<'_> {
         asm: &mut Assembly,
         path: &LoadPath,
         mut k: usize,
-        tangent: Option<Vec<f64>>,
+        tangent: Option<LoadTangent>,
         step: usize,
     ) -> Result<Found, SolveError> {
         let model = self.model;
@@ -418,8 +418,8 @@ impl Branch<'_> {
         loop {
             let gap0 = model.gaps(&path.cur)[k];
             let extrapolated = tangent
-                .as_deref()
-                .and_then(|z| closing_increment(model, &path.cur, k, gap0, z));
+                .as_ref()
+                .and_then(|z| predicted_closing(model, &path.cur, k, gap0, z));
             let search = EventSearch {
                 opts: self.opts,
                 from: &path.cur,
