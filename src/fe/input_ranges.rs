@@ -15,7 +15,21 @@ pub struct InputRange {
     test: fn(f64) -> bool,
 }
 
+/// `v > 0`.
+fn positive(v: f64) -> bool {
+    v > 0.0
+}
+
 impl InputRange {
+    /// A range of the positive values, for the field `field`.
+    const fn positive(field: &'static str) -> InputRange {
+        InputRange {
+            field,
+            allowed: "> 0",
+            test: positive,
+        }
+    }
+
     /// Whether `value` is finite and in the range.
     pub fn holds(&self, value: f64) -> bool {
         value.is_finite() && (self.test)(value)
@@ -35,25 +49,13 @@ impl InputRange {
 }
 
 /// The indenter's aspect ratio `Δ/λ`.
-pub const ASPECT_RATIO: InputRange = InputRange {
-    field: "aspect_ratio",
-    allowed: "> 0",
-    test: |v| v > 0.0,
-};
+pub const ASPECT_RATIO: InputRange = InputRange::positive("aspect_ratio");
 
 /// The layer's thickness `h/λ`.
-pub const THICKNESS_OVER_LAMBDA: InputRange = InputRange {
-    field: "thickness_over_lambda",
-    allowed: "> 0",
-    test: |v| v > 0.0,
-};
+pub const THICKNESS_OVER_LAMBDA: InputRange = InputRange::positive("thickness_over_lambda");
 
 /// The bulk-to-shear modulus ratio `κ/G`.
-pub const KAPPA_OVER_G: InputRange = InputRange {
-    field: "kappa_over_g",
-    allowed: "> 0",
-    test: |v| v > 0.0,
-};
+pub const KAPPA_OVER_G: InputRange = InputRange::positive("kappa_over_g");
 
 /// The contact half-width `a/λ` a curve loads to: inside the half period.
 pub const UNTIL_A_OVER_LAMBDA: InputRange = InputRange {
@@ -63,11 +65,7 @@ pub const UNTIL_A_OVER_LAMBDA: InputRange = InputRange {
 };
 
 /// The mean pressure `p̄/E*` a curve loads to.
-pub const UNTIL_P_OVER_ESTAR: InputRange = InputRange {
-    field: "until_p_over_estar",
-    allowed: "> 0",
-    test: |v| v > 0.0,
-};
+pub const UNTIL_P_OVER_ESTAR: InputRange = InputRange::positive("until_p_over_estar");
 
 /// The contact fraction a curve loads to: short of full contact.
 pub const UNTIL_CONTACT_FRACTION: InputRange = InputRange {
@@ -77,25 +75,13 @@ pub const UNTIL_CONTACT_FRACTION: InputRange = InputRange {
 };
 
 /// The friction coefficient μ of a frictional interface.
-pub const FRICTION_COEFFICIENT: InputRange = InputRange {
-    field: "friction_coefficient",
-    allowed: "> 0",
-    test: |v| v > 0.0,
-};
+pub const FRICTION_COEFFICIENT: InputRange = InputRange::positive("friction_coefficient");
 
 /// The Orowan shear limit `τ_max/E*` of a frictional interface.
-pub const TAU_MAX_OVER_ESTAR: InputRange = InputRange {
-    field: "tau_max_over_estar",
-    allowed: "> 0",
-    test: |v| v > 0.0,
-};
+pub const TAU_MAX_OVER_ESTAR: InputRange = InputRange::positive("tau_max_over_estar");
 
 /// The stick band `e_c` of a frictional interface, in face elements.
-pub const ELASTIC_SLIP_OVER_ELEMENT: InputRange = InputRange {
-    field: "elastic_slip_over_element",
-    allowed: "> 0",
-    test: |v| v > 0.0,
-};
+pub const ELASTIC_SLIP_OVER_ELEMENT: InputRange = InputRange::positive("elastic_slip_over_element");
 
 /// The target advance of `a/λ` per load step.
 pub const DA_TARGET: InputRange = InputRange {
@@ -119,11 +105,7 @@ pub const PEAK_RATIO: InputRange = InputRange {
 };
 
 /// The mesh grading's first layer height over the face spacing.
-pub const FIRST_LAYER_OVER_DX: InputRange = InputRange {
-    field: "grading.first_layer_over_dx",
-    allowed: "> 0",
-    test: |v| v > 0.0,
-};
+pub const FIRST_LAYER_OVER_DX: InputRange = InputRange::positive("grading.first_layer_over_dx");
 
 #[cfg(test)]
 mod tests {

@@ -3,9 +3,10 @@
 //! [`crate::fe::stepping::node_events`], [`crate::fe::stepping::release_events`]), from first contact to the target
 //! contact width, contact fraction or mean pressure.
 //!
-//! Predictor: the tangent (Euler) step from the last converged state to the slab
-//! displacement at which the target node closes along that tangent, scaled by the previous
-//! event's ratio of actual to extrapolated increment. Nodes left touching with a vanishing
+//! Predictor: the step along the load path from the last converged state (second order where
+//! its curvature is known, [`crate::fe::stepping::predictor`]) to the slab displacement at which
+//! the target node closes along it, scaled by the previous event's ratio of actual to
+//! extrapolated increment. Nodes left touching with a vanishing
 //! force at the last event enter the next step active.
 
 use serde::{Deserialize, Serialize};

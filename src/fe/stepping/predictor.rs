@@ -184,34 +184,12 @@ pub(crate) fn displacement_step(
 mod tests {
     use super::*;
     use crate::fe::newton::inf_norm;
-    use crate::fe::stepping::loading::loading_branch;
-    use crate::fe::{build_model, estar_over_g, Interface, Kinematics, LayerProblem, MeshLevel};
+    use crate::fe::stepping::test_support::loaded_sinusoid;
 
     /// The last two converged states of the frictionless AR 0.3 sinusoid on the coarse mesh
     /// loaded to a/λ = 0.2, with the model and its assembly.
     fn loaded() -> (Model, Assembly, State, State) {
-        let problem = LayerProblem {
-            aspect_ratio: 0.3,
-            finer_harmonics: crate::profile::FinerHarmonics::NONE,
-            thickness_over_lambda: 1.0,
-            kappa_over_g: 1000.0,
-            kinematics: Kinematics::Finite,
-            interface: Interface::Frictionless,
-        };
-        let opts = SolveOptions {
-            mesh: MeshLevel::Coarse,
-            until_a_over_lambda: 0.2,
-            ..SolveOptions::default()
-        };
-        let model = build_model(&problem, &opts);
-        let mut asm = Assembly::new(&model);
-        let estar = estar_over_g(problem.kappa_over_g);
-        let mut states = Vec::new();
-        loading_branch(&model, &mut asm, &opts, estar, &mut |_, at| {
-            states.push(at.state.clone());
-            std::ops::ControlFlow::Continue(())
-        })
-        .expect("the coarse AR 0.3 curve reaches a/λ = 0.2");
+        let (model, asm, _, mut states) = loaded_sinusoid(0.3, 0.2);
         let last = states.pop().expect("a point");
         let before = states.pop().expect("two points");
         (model, asm, before, last)

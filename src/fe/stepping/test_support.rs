@@ -1,0 +1,40 @@
+//! The fixtures of the stepping's unit tests: a sinusoid on the coarse mesh, loaded.
+
+use crate::fe::model::{Model, State};
+use crate::fe::newton::assembly::Assembly;
+use crate::fe::stepping::loading::loading_branch;
+use crate::fe::{
+    build_model, estar_over_g, Interface, Kinematics, LayerProblem, MeshLevel, SolveOptions,
+};
+
+/// The converged states of the frictionless sinusoid of aspect ratio `aspect_ratio` (finite
+/// kinematics, κ/G 1000, a layer one wavelength thick) on the coarse mesh, edge event by edge
+/// event up to `until_a_over_lambda`, with the model, its assembly and the options.
+pub(crate) fn loaded_sinusoid(
+    aspect_ratio: f64,
+    until_a_over_lambda: f64,
+) -> (Model, Assembly, SolveOptions, Vec<State>) {
+    let problem = LayerProblem {
+        aspect_ratio,
+        finer_harmonics: crate::profile::FinerHarmonics::NONE,
+        thickness_over_lambda: 1.0,
+        kappa_over_g: 1000.0,
+        kinematics: Kinematics::Finite,
+        interface: Interface::Frictionless,
+    };
+    let opts = SolveOptions {
+        mesh: MeshLevel::Coarse,
+        until_a_over_lambda,
+        ..SolveOptions::default()
+    };
+    let model = build_model(&problem, &opts);
+    let mut asm = Assembly::new(&model);
+    let estar = estar_over_g(problem.kappa_over_g);
+    let mut states = Vec::new();
+    loading_branch(&model, &mut asm, &opts, estar, &mut |_, at| {
+        states.push(at.state.clone());
+        std::ops::ControlFlow::Continue(())
+    })
+    .unwrap_or_else(|f| panic!("the coarse AR {aspect_ratio} curve: {}", f.error));
+    (model, asm, opts, states)
+}
