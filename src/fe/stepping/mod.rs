@@ -8,7 +8,7 @@
 //! [`release_events`] where a contact node lets go; [`step_control`] holds the one regula falsi
 //! and the step cutter; [`predictor`] the load tangent and the predicted state of a step;
 //! [`step_state`] the deformed state of every converged point, built only for a caller that
-//! asks; `test_support` the fixtures of their unit tests.
+//! asks; `test_fixtures` the fixtures of their unit tests.
 
 pub mod event_search;
 pub mod load_path;
@@ -20,5 +20,5 @@ pub mod release_events;
 pub mod step_control;
 pub mod step_state;
 #[cfg(test)]
-pub(crate) mod test_support;
+pub(crate) mod test_fixtures;
 pub mod unloading;

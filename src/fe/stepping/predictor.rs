@@ -184,7 +184,7 @@ pub(crate) fn displacement_step(
 mod tests {
     use super::*;
     use crate::fe::newton::inf_norm;
-    use crate::fe::stepping::test_support::loaded_sinusoid;
+    use crate::fe::stepping::test_fixtures::loaded_sinusoid;
 
     /// The last two converged states of the frictionless AR 0.3 sinusoid on the coarse mesh
     /// loaded to a/λ = 0.2, with the model and its assembly.

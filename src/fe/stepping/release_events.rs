@@ -169,7 +169,7 @@ pub(crate) fn first_release(
 mod tests {
     use super::*;
     use crate::fe::newton::assembly::Assembly;
-    use crate::fe::stepping::test_support::loaded_sinusoid;
+    use crate::fe::stepping::test_fixtures::loaded_sinusoid;
 
     /// The converged states of the frictionless AR 0.1 sinusoid on the coarse mesh, edge event
     /// by edge event up to a/λ = 0.3, with the model and its assembly.
