@@ -87,9 +87,9 @@ fn assert_closes(w: f64, w_load: f64, what: &str) {
 /// Frictionless: unloading revisits every load of the loading branch, exactly, and finds the
 /// same state there within a bound that shrinks with the Newton tolerance rtol, down to a
 /// round-off floor. Measured at AR 0.3 on the coarse mesh, at rtol 1e-6, 1e-8, 1e-10:
-/// |Δp̄|/p̄_max = 6.7e-9, 6.7e-11, 1.4e-11, asserted ≤ 0.02 rtol + 1e-10 (3 to 7 times the
-/// measured); |W|/W_load = 1.3e-9, 1.3e-11, 3.3e-12, asserted ≤ 0.005 rtol + 2e-11 (4 to 6 times
-/// the measured), besides the scene's own bound 1e-6.
+/// |Δp̄|/p̄_max = 1.9e-8, 2.6e-10, 2.3e-11, asserted ≤ 0.1 rtol + 1e-10 (4 to 5 times the
+/// measured); |W|/W_load = 6.4e-10, 8.5e-11, 2.6e-12, asserted ≤ 0.02 rtol + 1e-11 (31, 2.5 and
+/// 4.6 times the measured), besides the scene's own bound 1e-6.
 #[test]
 fn frictionless_loop_closes_within_a_bound_that_shrinks_with_the_tolerance() {
     let p = problem(0.3, 0.0);
@@ -118,11 +118,11 @@ fn frictionless_loop_closes_within_a_bound_that_shrinks_with_the_tolerance() {
             w / w_load
         );
         assert!(
-            largest <= 0.02 * rtol + 1e-10,
+            largest <= 0.1 * rtol + 1e-10,
             "{what}: |Δp̄|/p̄_max = {largest:e}"
         );
         assert!(
-            w.abs() <= (0.005 * rtol + 2e-11) * w_load,
+            w.abs() <= (0.02 * rtol + 1e-11) * w_load,
             "{what}: W/W_load = {:e}",
             w / w_load
         );
