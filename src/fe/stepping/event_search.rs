@@ -137,8 +137,9 @@ pub(crate) fn closing_increment(
 
 /// Increment of `d` at which free node `k`, at gap `g0`, closes along the load path
 /// `tangent`: the smallest positive root of `g₀ + ġ dd + ½ g̈ dd² = 0`, with `ġ = ∇c·q'` and
-/// `g̈ = ∇c·q''` where the path's curvature is known (the gap's own curvature in `x` left
-/// out: `|y_s''| dx²` is below the other terms' round-off at these steps), else
+/// `g̈ = ∇c·q''` where the path's curvature is known (the gap's own curvature in `x`,
+/// `−y_s'' (∂x/∂d)²`, left out: this is the first trial of the bordered solve, which finds the
+/// event's `d` itself), else
 /// [`closing_increment`]; `None` if the gap does not close along it.
 pub(crate) fn predicted_closing(
     model: &Model,

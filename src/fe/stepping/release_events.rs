@@ -189,7 +189,7 @@ mod tests {
     /// that touched at the event before lets go where it touched. Its located release lies at
     /// that event's slab displacement (measured relative difference 1.9e-11, asserted 1e-10: both
     /// searches stop within their gap tolerances, `edge_gap_rtol` of the target's first gap, which
-    /// allow about 4e-8 here), and the state there is the loading state (positions within
+    /// allow a relative error in `d` of about `edge_gap_rtol · Δd/d`, `Δd` the event's increment), and the state there is the loading state (positions within
     /// 1e-11 λ; measured 5.1e-12 λ, the difference of `d`, 1.7e-12 λ, times the path's rate).
     #[test]
     fn unloading_release_lies_where_loading_touched() {
