@@ -6,7 +6,7 @@
 CARGO ?= cargo
 export CARGO_TERM_COLOR ?= never
 
-.PHONY: all reproduce test python-test lint fmt-check clippy check bless stale bench bench-solver bench-tiers reference fuzz clean
+.PHONY: all reproduce test python-test lint fmt-check clippy check bless stale bench bench-solver bench-tiers reference robustness fuzz clean
 
 all: reproduce
 
@@ -110,6 +110,16 @@ bench-tiers:
 reference:
 	$(CARGO) build --release --locked
 	$(CARGO) run --release --locked --quiet -- refine-reference
+
+## The robustness grid (issue 42, goal 6): AR × μ × τ_max loaded to a/λ 0.45 and unloaded at each mesh of
+## ROBUSTNESS_MESHES, one case per core, each stopped after ROBUSTNESS_TIMEOUT_S seconds, written to
+## experiments/data/robustness_grid.csv (table and duration: docs/verification.md, "Robustness grid").
+ROBUSTNESS_MESHES ?= 48,96,160
+ROBUSTNESS_TIMEOUT_S ?= 300
+robustness:
+	$(CARGO) build --release --locked
+	$(CARGO) run --release --locked --quiet --example robustness_grid -- --wavy target/release/wavy --mesh $(ROBUSTNESS_MESHES) --timeout-s $(ROBUSTNESS_TIMEOUT_S) > experiments/data/robustness_grid.csv.tmp
+	mv experiments/data/robustness_grid.csv.tmp experiments/data/robustness_grid.csv
 
 ## The property and fuzz suites with 10⁶ cases each (make test runs 10⁴); WAVY_FUZZ_SEED picks another seed.
 fuzz:

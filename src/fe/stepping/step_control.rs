@@ -16,27 +16,42 @@ pub(crate) const STEP_CUT_FACTOR: f64 = 0.5;
 /// method (superlinear, order ≈ 1.44, instead of the linear order of plain regula falsi).
 const ILLINOIS_FACTOR: f64 = 0.5;
 
-/// The cuts of a failed step, at most `max` in a row.
+/// The cuts of a failed step, at most `max` in a row, none to an increment below `floor`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct StepCuts {
     made: usize,
     max: usize,
+    floor: f64,
 }
 
 impl StepCuts {
-    /// No cut made yet, at most `max` allowed.
+    /// No cut made yet, at most `max` allowed, with no floor on the increment.
     pub(crate) fn new(max: usize) -> Self {
-        Self { made: 0, max }
+        Self::with_floor(max, 0.0)
+    }
+
+    /// No cut made yet, at most `max` allowed in a row, and none that would leave an
+    /// increment (`|to − from|` after the cut, units of λ) below `floor`: where a step that
+    /// converges resets the count, the floor is what ends a run of cuts that makes no
+    /// progress.
+    pub(crate) fn with_floor(max: usize, floor: f64) -> Self {
+        Self {
+            made: 0,
+            max,
+            floor,
+        }
     }
 
     /// The slab displacement a cut step reaches from `from` towards the failed `to`
-    /// (`from + ½ (to − from)`), counting the cut; `None` once `max` cuts have been made.
+    /// (`from + ½ (to − from)`), counting the cut; `None` once `max` cuts have been made or
+    /// when the cut increment would be below the floor.
     pub(crate) fn cut(&mut self, from: f64, to: f64) -> Option<f64> {
-        if self.made == self.max {
+        let increment = STEP_CUT_FACTOR * (to - from);
+        if self.made == self.max || increment.abs() < self.floor {
             return None;
         }
         self.made += 1;
-        Some(from + STEP_CUT_FACTOR * (to - from))
+        Some(from + increment)
     }
 
     /// A step converged: the next failure starts counting again.
@@ -161,5 +176,27 @@ mod tests {
         assert_eq!(cuts.cut(1.0, 1.25), None);
         cuts.reset();
         assert_eq!(cuts.cut(0.0, 1.0), Some(0.5));
+    }
+
+    /// With a floor, a run of cuts that converge and reset the count still ends: no cut
+    /// leaves an increment below the floor, whichever way the step goes.
+    #[test]
+    fn step_cuts_stop_at_their_floor_across_resets() {
+        let mut cuts = StepCuts::with_floor(12, 0.1);
+        let (mut from, to) = (1.0, 0.0);
+        let mut converged = 0;
+        while let Some(next) = cuts.cut(from, to) {
+            // the cut step converges, the retry of the target fails again
+            from = next;
+            cuts.reset();
+            converged += 1;
+        }
+        assert_eq!(
+            converged, 3,
+            "increments 0.5, 0.25, 0.125; 0.0625 is below the floor"
+        );
+        assert!((from - 0.125).abs() < 1e-15);
+        assert_eq!(cuts.cut(0.3, 0.5), Some(0.4));
+        assert_eq!(cuts.cut(0.3, 0.45), None);
     }
 }

@@ -9,7 +9,7 @@ use crate::fe::newton::assembly::Assembly;
 use crate::fe::stepping::load_path::LoadPath;
 use crate::fe::stepping::loading::loading_branch;
 use crate::fe::stepping::predictor::displacement_step;
-use crate::fe::stepping::step_control::StepCuts;
+use crate::fe::stepping::step_control::{StepCuts, STEP_CUT_FACTOR};
 use crate::fe::stepping::step_state::Converged;
 use crate::fe::{Curve, CurvePoint, LoadDirection, SolveOptions};
 use std::ops::ControlFlow;
@@ -43,7 +43,7 @@ pub(crate) fn trace_cycle(
 /// [`displacement_step`]) and is measured with the edge in the last loaded element, as at the
 /// loading events ([`measure_between_events`]). A step that fails is approached through
 /// intermediate displacements (the remaining increment halved, at most `max_step_cuts` times
-/// in a row, [`StepCuts`]) that serve as initial guesses only: the slip history is committed,
+/// in a row and never below the first event's increment cut as often, [`StepCuts`]) that serve as initial guesses only: the slip history is committed,
 /// and points are recorded, at the scheduled displacements alone, so that the discrete load
 /// path, and with it the dissipated energy, does not depend on where Newton needed help
 /// (where the cuts fall moves with the round-off of the linear solves). When contact remains
@@ -84,7 +84,7 @@ fn unload(
             unloading: points,
         })
     };
-    let mut cuts = StepCuts::new(opts.steps.max_step_cuts);
+    let mut cuts = unloading_cuts(opts, retract_increment);
     let mut steps = 0;
     let mut cur_p = path.points.last().map_or(0.0, |p| p.p_over_estar);
     // zero load: the round-off of p̄ relative to the largest load of the cycle
@@ -167,4 +167,15 @@ fn unload(
         }
     }
     Ok(points)
+}
+
+/// The cuts of the unloading steps: at most `max_step_cuts` in a row, and never to an increment
+/// below `smallest_increment` (the first event's) cut `max_step_cuts` times. A converged
+/// intermediate step resets the count of cuts in a row, so without the floor a Newton solve that
+/// stalls above its tolerance would be approached by ever smaller steps that converge trivially,
+/// one failure each, until `max_steps`.
+fn unloading_cuts(opts: &SolveOptions, smallest_increment: f64) -> StepCuts {
+    let cuts = opts.steps.max_step_cuts;
+    let floor = smallest_increment * STEP_CUT_FACTOR.powi(cuts as i32);
+    StepCuts::with_floor(cuts, floor)
 }
