@@ -7,11 +7,12 @@
 //! stopped; a case still running after `--timeout-s` seconds is stopped and reported as such.
 //!
 //! Run: `make robustness` (after a release build; `--wavy` names the binary,
-//! `--mesh 48,96,160` the meshes, `--timeout-s 600` the limit per case).
+//! `--mesh 48,96,160` the meshes, `--timeout-s 300` the limit per case).
 use rayon::prelude::*;
 use std::io::Read;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
+use wavy::csv_text::CsvTable;
 
 const ASPECT_RATIOS: [f64; 5] = [0.05, 0.1, 0.2, 0.3, 0.4];
 const FRICTION_COEFFICIENTS: [f64; 3] = [0.2, 1.0, 100.0];
@@ -60,17 +61,19 @@ fn cases(meshes: &[usize]) -> Vec<Case> {
     cases
 }
 
-/// The mean of the `newton_iterations` column of a `wavy solve` CSV, and its row count.
+/// The mean of the `newton_iterations` column of a `wavy solve` CSV, and its row count
+/// (none, and a NaN mean, when the solve wrote no table).
 fn newton_iterations(csv: &str) -> (usize, f64) {
-    let mut lines = csv.lines();
-    let Some(header) = lines.next() else {
+    let Ok(table) = CsvTable::parse(csv) else {
         return (0, f64::NAN);
     };
-    let Some(column) = header.split(',').position(|c| c == "newton_iterations") else {
+    let Some(column) = table.column("newton_iterations") else {
         return (0, f64::NAN);
     };
-    let its: Vec<f64> = lines
-        .filter_map(|l| l.split(',').nth(column)?.parse().ok())
+    let its: Vec<f64> = table
+        .rows
+        .iter()
+        .filter_map(|r| r.get(column)?.parse().ok())
         .collect();
     let mean = its.iter().sum::<f64>() / its.len() as f64;
     (its.len(), mean)
@@ -142,7 +145,7 @@ fn run(wavy: &str, case: Case, timeout: Duration) -> Outcome {
 fn main() {
     let mut wavy = String::from("target/release/wavy");
     let mut meshes = vec![48, 96, 160];
-    let mut timeout = Duration::from_secs(600);
+    let mut timeout = Duration::from_secs(300);
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         let value = args.next().unwrap_or_else(|| panic!("{a} needs a value"));
@@ -162,7 +165,7 @@ fn main() {
                 )
             }
             other => {
-                panic!("unknown argument {other} (--wavy PATH, --mesh 48,96,160, --timeout-s 600)")
+                panic!("unknown argument {other} (--wavy PATH, --mesh 48,96,160, --timeout-s 300)")
             }
         }
     }
