@@ -28,7 +28,8 @@ pub fn friction_coefficient() -> f64 {
 
 /// Elastic slip at which the friction threshold is fully mobilised, over the mean element
 /// length along the contact face: 0.005, Abaqus's default for penalty friction (the paper's
-/// FE uses "penalty-based Coulomb–Orowan friction" and states no value; R6).
+/// FE uses "penalty-based Coulomb–Orowan friction" and states no value; R6). 0 is exact stick
+/// (R3), not the default: docs/replication.md R3 says what it changes and what is open.
 pub fn elastic_slip_over_element() -> f64 {
     0.005
 }

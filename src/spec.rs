@@ -89,9 +89,9 @@ pub struct FeSection {
     #[serde(default = "default_friction_coefficient")]
     pub friction_coefficient: Bounded<NonNegative>,
     /// Penalty regularisation of stick: elastic slip at the friction threshold over the mean
-    /// element length along the contact face (default 0.005, Abaqus's).
+    /// element length along the contact face (default 0.005, Abaqus's; 0 is exact stick).
     #[serde(default = "default_elastic_slip_over_element")]
-    pub elastic_slip_over_element: Bounded<Positive>,
+    pub elastic_slip_over_element: Bounded<NonNegative>,
     /// `finite` (the paper's physics) or `linear` (small strain).
     #[serde(default)]
     pub kinematics: Kinematics,
@@ -125,7 +125,7 @@ fn default_kappa_over_g() -> Bounded<Positive> {
 fn default_friction_coefficient() -> Bounded<NonNegative> {
     Bounded::trusted(defaults::friction_coefficient())
 }
-fn default_elastic_slip_over_element() -> Bounded<Positive> {
+fn default_elastic_slip_over_element() -> Bounded<NonNegative> {
     Bounded::trusted(defaults::elastic_slip_over_element())
 }
 /// A [`MeshLevel`] from its name or element count (see [`MeshLevel::ALLOWED`]).

@@ -234,7 +234,7 @@ fn solve_on_thread(
 /// `KeyboardInterrupt` on Ctrl-C ([`solve_on_thread`]). With `vtk`, the curve's ParaView time
 /// series is written into that folder, as `wavy solve --vtk` does.
 #[pyfunction]
-#[pyo3(signature = (*, ar, tau_max_mpa, mu, estar_mpa, kappa_over_g, thickness_over_lambda,
+#[pyo3(signature = (*, ar, tau_max_mpa, mu, elastic_slip_over_element, estar_mpa, kappa_over_g, thickness_over_lambda,
     kinematics, mesh, tolerance, error_estimate, until_a_over_lambda, until_p_over_estar, unload,
     vtk, profile, until_contact_fraction, max_memory, solver, grid_points, points, half_plane))]
 #[allow(clippy::too_many_arguments)]
@@ -243,6 +243,7 @@ fn solve<'py>(
     ar: f64,
     tau_max_mpa: f64,
     mu: f64,
+    elastic_slip_over_element: f64,
     estar_mpa: f64,
     kappa_over_g: f64,
     thickness_over_lambda: f64,
@@ -282,6 +283,7 @@ fn solve<'py>(
     let request = SolveRequest {
         tau_max_mpa,
         mu,
+        elastic_slip_over_element,
         estar_mpa,
         kappa_over_g,
         thickness_over_lambda,
@@ -418,6 +420,10 @@ fn _wavy(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let defaults = SolveRequest::new(f64::NAN);
     let d = PyDict::new(m.py());
     d.set_item("mu", defaults.mu)?;
+    d.set_item(
+        "elastic_slip_over_element",
+        defaults.elastic_slip_over_element,
+    )?;
     d.set_item("estar_mpa", defaults.estar_mpa)?;
     d.set_item("kappa_over_g", defaults.kappa_over_g)?;
     d.set_item("thickness_over_lambda", defaults.thickness_over_lambda)?;

@@ -62,6 +62,8 @@ BAD = [
     (solve(ar=float("inf")), ValueError, "ar = inf is out of range"),
     (solve(tau_max_mpa=-0.1), ValueError, "tau_max_mpa = -0.1 is out of range"),
     (solve(mu=float("nan")), ValueError, "mu = NaN is out of range"),
+    (solve(elastic_slip_over_element=-1), ValueError,
+     "elastic_slip_over_element = -1 is out of range; allowed: >= 0"),
     (solve(estar_mpa=0), ValueError, "estar_mpa = 0 is out of range"),
     (solve(kappa_over_g=-1), ValueError, "kappa_over_g = -1 is out of range"),
     (solve(thickness_over_lambda=0), ValueError, "thickness_over_lambda = 0 is out of range"),

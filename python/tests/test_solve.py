@@ -52,6 +52,17 @@ def test_an_unloading_loop_matches_the_cli():
     assert r.p_over_estar[-1] == pytest.approx(0.0, abs=1e-6)
 
 
+def test_exact_stick_matches_the_cli():
+    args = ["--ar", 0.3, "--tau-max-mpa", 0.1, "--until-a-over-lambda", 0.3, "--mesh", 16,
+            "--elastic-slip-over-element", 0]
+    rows = cli_rows("solve", *args)
+    r = wavy.solve(ar=0.3, tau_max_mpa=0.1, until_a_over_lambda=0.3, mesh=16,
+                   elastic_slip_over_element=0)
+    assert_same_rows(r, rows)
+    penalty = wavy.solve(ar=0.3, tau_max_mpa=0.1, until_a_over_lambda=0.3, mesh=16)
+    assert list(penalty.p_over_estar) != list(r.p_over_estar)
+
+
 def test_the_error_estimate_matches_the_cli():
     rows = cli_rows("solve", "--ar", 0.1, "--mesh", 24, "--error-estimate")
     r = wavy.solve(ar=0.1, mesh=24, error_estimate=True)

@@ -93,6 +93,7 @@ def solve(
     unload: bool = False,
     error_estimate: bool = False,
     mu: Optional[float] = None,
+    elastic_slip_over_element: Optional[float] = None,
     estar_mpa: Optional[float] = None,
     kappa_over_g: Optional[float] = None,
     thickness_over_lambda: Optional[float] = None,

@@ -23,6 +23,7 @@ def solve(
     unload: bool = False,
     error_estimate: bool = False,
     mu: Optional[float] = None,
+    elastic_slip_over_element: Optional[float] = None,
     estar_mpa: Optional[float] = None,
     kappa_over_g: Optional[float] = None,
     thickness_over_lambda: Optional[float] = None,
@@ -76,6 +77,10 @@ def solve(
     mu : float, optional
         Friction coefficient μ of the Coulomb–Orowan law, >= 0 (0 = frictionless). Default
         None: 1.0.
+    elastic_slip_over_element : float, optional
+        Elastic slip at which friction is fully mobilised, over the face element length,
+        >= 0 (0 = exact stick: a stuck node is held and its friction force is the reaction;
+        > 0 = penalty-regularised stick). Default None: 0.005.
     estar_mpa : float, optional
         Plane-strain modulus E* of the layer in MPa, > 0 (τ_max/E* is what the physics
         sees). Default None: 1.0.
@@ -176,6 +181,7 @@ def solve(
         ar=float("nan") if ar is None else _checks.number("ar", ar),
         tau_max_mpa=_checks.number("tau_max_mpa", tau_max_mpa),
         mu=or_default("mu", mu),
+        elastic_slip_over_element=or_default("elastic_slip_over_element", elastic_slip_over_element),
         estar_mpa=or_default("estar_mpa", estar_mpa),
         kappa_over_g=or_default("kappa_over_g", kappa_over_g),
         thickness_over_lambda=or_default("thickness_over_lambda", thickness_over_lambda),

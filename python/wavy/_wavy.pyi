@@ -13,7 +13,8 @@ def law(model: str, ar: float, tau_max_mpa: float, reading: str, coefficients: s
         values: npt.NDArray[np.float64], inverse: bool
         ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.bool_]]: ...
 def fit_domain(coefficients: str) -> Tuple[float, float, float, float]: ...
-def solve(*, ar: float, tau_max_mpa: float, mu: float, estar_mpa: float, kappa_over_g: float,
+def solve(*, ar: float, tau_max_mpa: float, mu: float, elastic_slip_over_element: float,
+          estar_mpa: float, kappa_over_g: float,
           thickness_over_lambda: float, kinematics: Optional[str], mesh: Optional[str],
           tolerance: Optional[float], error_estimate: bool, until_a_over_lambda: float,
           until_p_over_estar: Optional[float], unload: bool, vtk: Optional[str],

@@ -39,6 +39,10 @@ pub struct SolveArgs {
     /// Friction coefficient μ of the Coulomb–Orowan law (≥ 0; 0 = frictionless).
     #[arg(long, default_value_t = defaults::friction_coefficient(), allow_hyphen_values = true)]
     pub mu: f64,
+    /// Elastic slip e_c at which friction is mobilised, over the face element length (≥ 0;
+    /// 0 is exact stick: a stuck node is held and its friction force is the reaction).
+    #[arg(long, default_value_t = defaults::elastic_slip_over_element(), allow_hyphen_values = true)]
+    pub elastic_slip_over_element: f64,
     /// Plane-strain modulus E* in MPa (> 0): τ_max/E* is what the physics sees.
     #[arg(long, default_value_t = defaults::fe_estar_mpa(), allow_hyphen_values = true)]
     pub estar_mpa: f64,
@@ -139,6 +143,7 @@ impl SolveArgs {
             finer_harmonics: profile.finer,
             tau_max_mpa: self.tau_max_mpa,
             mu: self.mu,
+            elastic_slip_over_element: self.elastic_slip_over_element,
             estar_mpa: self.estar_mpa,
             kappa_over_g: self.kappa_over_g,
             thickness_over_lambda: self.thickness_over_lambda,

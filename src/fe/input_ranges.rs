@@ -80,8 +80,12 @@ pub const FRICTION_COEFFICIENT: InputRange = InputRange::positive("friction_coef
 /// The Orowan shear limit `τ_max/E*` of a frictional interface.
 pub const TAU_MAX_OVER_ESTAR: InputRange = InputRange::positive("tau_max_over_estar");
 
-/// The stick band `e_c` of a frictional interface, in face elements.
-pub const ELASTIC_SLIP_OVER_ELEMENT: InputRange = InputRange::positive("elastic_slip_over_element");
+/// The stick band `e_c` of a frictional interface, in face elements: 0 is exact stick.
+pub const ELASTIC_SLIP_OVER_ELEMENT: InputRange = InputRange {
+    field: "elastic_slip_over_element",
+    allowed: ">= 0",
+    test: |v| v >= 0.0,
+};
 
 /// The target advance of `a/λ` per load step.
 pub const DA_TARGET: InputRange = InputRange {

@@ -58,7 +58,7 @@ pub mod shear_test;
 pub mod stepping;
 
 pub use contact::edge_rule::{EdgeRule, DISCRETE_EDGE_FRACTION, EDGE_FRACTION_BY_ASPECT};
-pub use contact::friction::{CoulombOrowan, Interface};
+pub use contact::friction::{Branch, CoulombOrowan, Interface};
 pub use contact::patch_edge::EDGE_PROGRESS_BY_FORCE_RATIO;
 pub use convergence::{
     convergence_table, mesh_convergence, mesh_convergence_levels, p_at, ConvergenceRow,

@@ -153,6 +153,12 @@ pub struct NewtonOptions {
     /// the step lands (semismooth Newton, [`crate::fe::newton::friction_step`]); else the
     /// branch of the current state.
     pub semismooth_friction: bool,
+    /// Under exact stick, the stiffness `c_t` of the active-set decision
+    /// ([`crate::fe::contact::friction::Branch::decide`]) over the shear modulus: how far a
+    /// sliding node's reversed slip counts against its threshold. It changes the Newton path, not
+    /// the converged curve where each increment has one solution (test
+    /// `exact_stick_decision_stiffness_changes_the_path_not_the_curve`; docs/replication.md R3).
+    pub stick_decision_stiffness: f64,
 }
 
 impl Default for NewtonOptions {
@@ -167,6 +173,7 @@ impl Default for NewtonOptions {
             residual_atol: 1e-13,
             increment_atol: 1e-14,
             semismooth_friction: true,
+            stick_decision_stiffness: 1.0,
         }
     }
 }

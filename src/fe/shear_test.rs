@@ -156,7 +156,10 @@ pub fn press_and_shear(test: &ShearTest) -> Result<Vec<ShearPoint>, SolveError> 
             slipping_nodes: st
                 .slip
                 .iter()
-                .filter(|s| s.elastic.abs() >= e_c * (1.0 - 1e-12))
+                .filter(|s| match e_c > 0.0 {
+                    true => s.elastic.abs() >= e_c * (1.0 - 1e-12),
+                    false => s.held != crate::fe::contact::friction::Branch::Stick,
+                })
                 .count(),
             nodes: b.len(),
             min_face_displacement_over_elastic_slip: min_disp / e_c,

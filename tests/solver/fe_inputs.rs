@@ -141,7 +141,7 @@ fn invalid_friction_inputs_name_the_field() {
             CoulombOrowan {
                 friction_coefficient: 1.0,
                 tau_max_over_estar: 0.1,
-                elastic_slip_over_element: 0.0,
+                elastic_slip_over_element: -0.005,
             },
             "elastic_slip_over_element",
         ),

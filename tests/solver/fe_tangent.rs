@@ -313,3 +313,58 @@ fn friction_tangent_matches_central_differences() {
         }
     }
 }
+
+/// Exact stick (`elastic_slip_over_element = 0`): a held node's row is its constraint
+/// `k (x − x_anchor)`, a sliding node's `c·g ± w L`; the tangent with these rows against
+/// central differences of the reduced residual, in either regime and kinematics.
+#[test]
+fn exact_stick_tangent_matches_central_differences() {
+    use wavy::fe::Branch;
+    let regimes = [("coulomb", 0.4, 50.0), ("orowan", 50.0, 0.05)];
+    for kin in [Kinematics::Finite, Kinematics::Linear] {
+        for (name, mu, tau) in regimes {
+            let pb = LayerProblem {
+                kappa_over_g: 50.0,
+                kinematics: kin,
+                interface: Interface::coulomb_orowan(mu, tau, 0.0),
+                ..wavy::defaults::layer_problem(0.2)
+            };
+            let opts = SolveOptions {
+                mesh: MeshLevel::Elements { nx: 5, ny: 3 },
+                ..Default::default()
+            };
+            let m = build_model(&pb, &opts);
+            let mut asm = assembly::Assembly::new(&m);
+            let mut st = m.initial_state();
+            st.d = 0.06;
+            for (i, x) in st.x.iter_mut().enumerate() {
+                let r = m.mesh.nodes[i];
+                let ys = -0.2 * (1.0 - (std::f64::consts::TAU * r[0]).cos());
+                x[0] += 0.01 * (3.0 * r[0]).sin() * (1.0 + r[1]);
+                x[1] += (1.0 - r[1]) * (ys - 0.05) - 0.06 * r[1]
+                    + 0.002 * (5.0 * r[0] + 1.0).cos() * (1.0 - r[1]);
+            }
+            for k in 0..4 {
+                st.active[k] = true;
+            }
+            m.enforce_constraints(&mut st);
+            // node 1 held off its anchor, nodes 2 and 3 sliding in opposite directions
+            for (k, offset, held) in [
+                (1, 1e-3, Branch::Stick),
+                (2, 3e-3, Branch::SlipForward),
+                (3, -5e-3, Branch::SlipBackward),
+            ] {
+                let n = m.mesh.bottom[k];
+                st.slip[k].anchor_x = st.x[n][0] - offset;
+                st.slip[k].held = held;
+            }
+            assert_tangent_matches_central_differences(
+                &m,
+                &mut asm,
+                &st,
+                1e-7,
+                &format!("exact stick, {kin:?} {name}"),
+            );
+        }
+    }
+}

@@ -1,4 +1,5 @@
-//! Interface law: regularised Coulomb–Orowan friction (docs/replication.md R3).
+//! Interface law: Coulomb–Orowan friction, with exact or regularised stick
+//! (docs/replication.md R3).
 //!
 //! # The law
 //! With [`Interface::CoulombOrowan`] the indenter also exerts a tangential force `T` on
@@ -26,6 +27,18 @@
 //!
 //! and on convergence `e_{n+1} = e_c φ`, `S_{n+1} = S(x)`.
 //!
+//! # Exact stick (`e_c = 0`)
+//! With no elastic slip, stick is a constraint: a *held* node stays at its anchor (where the
+//! last converged step left it) and its friction force is the reaction `T = −(c·g)/w`, which
+//! the law bounds by `|T| ≤ L`; a *sliding* node has `T = −L φ`, `φ = ±1`, and slides the way
+//! of `φ`. Which piece a node is on is part of the state ([`SlipHistory::held`]), decided in
+//! each Newton step by the primal–dual active-set rule [`Branch::decide`] on the step's
+//! linearised force, slip and threshold ([`crate::fe::newton::friction_step`]). The
+//! decision's stiffness `c_t` ([`crate::fe::NewtonOptions::stick_decision_stiffness`]) sets the
+//! path to a solution; where an increment has more than one solution it may pick another
+//! (docs/replication.md R3). The regularised law above converges to this one at first order in
+//! `e_c` (test `penalty_stick_converges_to_exact_stick_at_first_order`).
+//!
 //! # Residual and tangent rows
 //! The reduced residual of an active node's sliding unknown `x` (slot vector
 //! `c = (1, y_s')`, see [`crate::fe::contact::indenter`]) becomes
@@ -45,6 +58,10 @@
 //!   through `ℓ`,
 //!   `∂(w L φ)/∂q_m = w τ_max φ (∂ℓ/∂P_m)·c_m` on a neighbour's slot, and on the own
 //!   unknown `τ_max (y_s' y_s''/w ℓ φ + w φ (∂ℓ/∂P)·c + w ℓ dφ/dx)`.
+//!
+//! Under exact stick a held node's equation is `k (x − x_anchor) = 0` instead (`k` =
+//! [`FrictionLaw::hold_stiffness`]), a sliding node's the row above with `dφ/dx = 0`
+//! ([`crate::fe::newton::friction_rows`]).
 //!
 //! The tangent is not symmetric: its friction rows are a low-rank update of the symmetric
 //! part, solved by the Woodbury identity (see [`crate::fe::linsys`]). The law is piecewise
@@ -102,21 +119,31 @@ pub struct CoulombOrowan {
 }
 
 /// Committed friction history of one contact-face node.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SlipHistory {
-    /// Elastic slip `e_n` at the last converged step (units of λ, `|e_n| ≤ e_c`).
+    /// Elastic slip `e_n` at the last converged step (units of λ, `|e_n| ≤ e_c`; 0 under
+    /// exact stick).
     pub elastic: f64,
     /// Current `x` at the last converged step; the step's slip is the arc length from
     /// here.
     pub anchor_x: f64,
+    /// Under exact stick (`e_c = 0`), the node's piece of the law in the current iterate:
+    /// held at its anchor, or sliding either way. It is part of the state because stick
+    /// and slip at zero slip are both possible: the semismooth Newton step decides it
+    /// ([`crate::fe::newton::friction_step`]). Under the penalty law the piece follows from
+    /// `e*` ([`Branch::of`]) and this field is not read.
+    pub held: Branch,
 }
 
 impl SlipHistory {
-    /// No elastic slip, anchored at `x`: a node that is free or has just touched.
+    /// No elastic slip, anchored at `x`: a node that is free or has just touched. Under
+    /// exact stick it starts held; its first Newton step lets it slide if its threshold
+    /// cannot hold it.
     pub(in crate::fe) fn fresh(x: f64) -> Self {
         Self {
             elastic: 0.0,
             anchor_x: x,
+            held: Branch::Stick,
         }
     }
 
@@ -134,8 +161,13 @@ pub(in crate::fe) struct FrictionLaw {
     pub mu: f64,
     /// `τ_max/G`.
     pub tau_max: f64,
-    /// Elastic slip `e_c` at which the threshold is reached (units of λ).
+    /// Elastic slip `e_c` at which the threshold is reached (units of λ); 0 is exact
+    /// stick ([`FrictionLaw::exact_stick`]).
     pub slip_c: f64,
+    /// Scale `k` of a held node's row `k (x − x_anchor)` under exact stick, and of the
+    /// law's complementarity residual ([`crate::fe::newton::friction_rows`]): the shear
+    /// modulus (units `G`), the stiffness of a face node per unit of its displacement.
+    pub hold_stiffness: f64,
 }
 
 /// Friction regime of one active node.
@@ -185,26 +217,38 @@ impl FrictionLaw {
             mu: interface.friction_coefficient,
             tau_max: interface.tau_max_over_estar * estar_over_g(mat.kappa / mat.g) * mat.g,
             slip_c: interface.elastic_slip_over_element * face_width / face_elements as f64,
+            hold_stiffness: mat.g,
         }
+    }
+
+    /// Whether stick is exact (`e_c = 0`): a stuck node is held at its anchor by a
+    /// constraint and its friction force is the reaction, `|τ| ≤ L`; the law then has no
+    /// regularisation that moves the answer.
+    pub(in crate::fe) fn exact_stick(&self) -> bool {
+        self.slip_c == 0.0
     }
 
     /// Friction force of one active node (return mapping from its committed history).
     ///
-    /// `slope`, `curvature`: `y_s'`, `y_s''` under the node; `trial_slip`: `e*`
-    /// ([`SlipHistory::trial_elastic_slip`]); `node`, `neighbours`: current positions of
-    /// the node and of its previous and next contact-face neighbours (if any); `normal`:
-    /// the normal force `N`.
+    /// `slope`, `curvature`: `y_s'`, `y_s''` under the node; `history`: the node's
+    /// history and its trial elastic slip `e*` ([`SlipHistory::trial_elastic_slip`]);
+    /// `node`, `neighbours`: current positions of the node and of its previous and next
+    /// contact-face neighbours (if any); `normal`: the normal force `N`. Under exact stick
+    /// the branch is the held one of the history, and a held node's force is its reaction,
+    /// which the residual row replaces (`force` 0 here).
     pub(in crate::fe) fn eval(
         &self,
-        slope: f64,
-        curvature: f64,
-        trial_slip: f64,
+        (slope, curvature): (f64, f64),
+        (history, trial_slip): (&SlipHistory, f64),
         node: [f64; 2],
         neighbours: [Option<[f64; 2]>; 2],
         normal: f64,
     ) -> FrictionEval {
         let w = (1.0 + slope * slope).sqrt();
-        let branch = Branch::of(trial_slip, self.slip_c);
+        let branch = match self.exact_stick() {
+            true => history.held,
+            false => Branch::of(trial_slip, self.slip_c),
+        };
         let (phi, _) = branch.mobilisation(trial_slip, self.slip_c, w);
         let (ell, dell) = tributary_length(node, neighbours);
         let (regime, limit) = self.threshold(normal, ell);
@@ -235,14 +279,25 @@ impl FrictionLaw {
 
     /// History after a converged load step: `e_{n+1} = e_c φ` (`e*` clamped to
     /// `[−e_c, e_c]`) and `S_{n+1} = S(x)` on an active node (`trial_slip = Some(e*)`);
-    /// no elastic slip on a free one.
-    pub(in crate::fe) fn commit(&self, trial_slip: Option<f64>, x: f64) -> SlipHistory {
+    /// no elastic slip on a free one. Under exact stick `e_{n+1} = 0`, and the node keeps
+    /// its held piece of the law (`held`) as the first guess of the next step.
+    pub(in crate::fe) fn commit(
+        &self,
+        trial_slip: Option<f64>,
+        x: f64,
+        held: Branch,
+    ) -> SlipHistory {
         let elastic = match trial_slip {
             Some(e) => e.clamp(-self.slip_c, self.slip_c),
             None => 0.0,
         };
         SlipHistory {
             elastic,
+            held: if trial_slip.is_some() {
+                held
+            } else {
+                Branch::Stick
+            },
             ..SlipHistory::fresh(x)
         }
     }
@@ -265,9 +320,10 @@ fn tributary_length(node: [f64; 2], neighbours: [Option<[f64; 2]>; 2]) -> (f64, 
     (ell, dell)
 }
 
-/// Branch of the return mapping that a node's trial elastic slip `e*` falls on.
+/// Branch of the return mapping that a node's trial elastic slip `e*` falls on; under
+/// exact stick, the piece of the law a node is on ([`Branch::decide`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(in crate::fe) enum Branch {
+pub enum Branch {
     /// `|e*| ≤ e_c`: `φ = e*/e_c`.
     Stick,
     /// `e* > e_c`: `φ = 1`.
@@ -277,6 +333,33 @@ pub(in crate::fe) enum Branch {
 }
 
 impl Branch {
+    /// The primal–dual active-set decision of exact stick (Hüeber, Stadler & Wohlmuth
+    /// 2008; in 2D the Alart–Curnier complementarity function): a node with friction force
+    /// `τ` (along `+x`), slip `s` since its anchor and threshold `L` is held where
+    /// `|τ + c_t s| ≤ L` and slides the way of `τ + c_t s` otherwise. At a solution the
+    /// decision is the law (a held node has `s = 0` and `|τ| ≤ L`; a sliding one `τ = ±L`
+    /// with its slip the same way), whatever `c_t > 0`: `c_t` changes the Newton path, and where
+    /// an increment has several solutions, which one the path reaches.
+    pub(in crate::fe) fn decide(force: f64, slip: f64, limit: f64, c_t: f64) -> Self {
+        let xi = force + c_t * slip;
+        if xi.abs() <= limit {
+            Branch::Stick
+        } else if xi > 0.0 {
+            Branch::SlipForward
+        } else {
+            Branch::SlipBackward
+        }
+    }
+
+    /// `φ` of a sliding branch (`±1`), 0 when held.
+    pub(in crate::fe) fn sign(self) -> f64 {
+        match self {
+            Branch::Stick => 0.0,
+            Branch::SlipForward => 1.0,
+            Branch::SlipBackward => -1.0,
+        }
+    }
+
     /// The branch of trial slip `e*` under the elastic-slip limit `e_c`. The band's edges
     /// `|e*| = e_c` belong to the slip branches (`φ` is continuous there, the tangent is the
     /// one-sided one of continued slip): a node committed while sliding sits there
@@ -294,9 +377,11 @@ impl Branch {
     }
 
     /// `φ` and `dφ/dx` of this branch's affine law at `e*` (`dS/dx = w`); on the stick
-    /// branch `φ = e*/e_c` also beyond the band (the branch's own affine extension).
+    /// branch `φ = e*/e_c` also beyond the band (the branch's own affine extension). Under
+    /// exact stick (`e_c = 0`) a held node's force is its reaction, not `φ L`: `(0, 0)`.
     pub(in crate::fe) fn mobilisation(self, trial_slip: f64, slip_c: f64, w: f64) -> (f64, f64) {
         match self {
+            Branch::Stick if slip_c == 0.0 => (0.0, 0.0),
             Branch::Stick => (trial_slip / slip_c, w / slip_c),
             Branch::SlipForward => (1.0, 0.0),
             Branch::SlipBackward => (-1.0, 0.0),
@@ -355,6 +440,7 @@ mod tests {
             mu: 0.5,
             tau_max: 0.1,
             slip_c: 1e-3,
+            hold_stiffness: 1.0,
         };
         let w = 1.2;
         let mobilisation = |e: f64| Branch::of(e, law.slip_c).mobilisation(e, law.slip_c, w);
@@ -364,13 +450,16 @@ mod tests {
             assert_eq!(mobilisation(sign * 2.0 * law.slip_c), (sign, 0.0));
             let (phi, dphi) = mobilisation(sign * 0.5 * law.slip_c);
             assert_eq!((phi, dphi), (sign * 0.5, w / law.slip_c));
-            let committed = law.commit(Some(sign * 3.0 * law.slip_c), 0.25);
+            let committed = law.commit(Some(sign * 3.0 * law.slip_c), 0.25, Branch::Stick);
             assert_eq!(
                 (committed.elastic, committed.anchor_x),
                 (sign * law.slip_c, 0.25)
             );
         }
-        assert_eq!(law.commit(None, 0.25), SlipHistory::fresh(0.25));
+        assert_eq!(
+            law.commit(None, 0.25, Branch::Stick),
+            SlipHistory::fresh(0.25)
+        );
         assert_eq!(law.threshold(-1.0, 0.02), (Regime::Open, 0.0));
         assert_eq!(law.threshold(1e-3, 0.02), (Regime::Coulomb, 0.5 * 1e-3));
         assert_eq!(law.threshold(1.0, 0.02), (Regime::Orowan, 0.1 * 0.02));

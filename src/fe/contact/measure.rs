@@ -67,7 +67,7 @@ pub(crate) fn measure(
         EdgeAt::OutermostPatch(event) => event,
     };
     let (patches, travelling) = contact_patches(model, st, &f.grad, opts, event);
-    let stick_runs = stick_runs(model, st);
+    let stick_runs = stick_runs(model, st, &f.grad);
     let stick = stick_zone(&stick_runs, &patches, peak_x(model, st));
     let a_over_lambda = match edge {
         EdgeAt::Node(k) => edge_position(model, st, k, opts.contact.edge_rule),
@@ -144,7 +144,7 @@ pub(crate) fn deformed_state(model: &Model, st: &State, grad: &[f64], estar: f64
         quads: model.mesh.quads.clone(),
         bottom: b.clone(),
         in_contact: st.active.clone(),
-        in_stick: stick_nodes(model, st),
+        in_stick: stick_nodes(model, st, grad),
         contact_pressure_over_estar: (0..n).map(|k| normal[k] / trib(k) / estar).collect(),
         contact_shear_over_estar: (0..n).map(|k| tangential[k] / trib(k) / estar).collect(),
     }

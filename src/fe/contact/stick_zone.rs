@@ -5,13 +5,15 @@
 //! # Which nodes stick
 //! A contact-face node sticks when it is active and its committed elastic slip is inside the
 //! band of the regularised law, `|e_{n+1}| < e_c` ([`crate::fe::contact::friction`]: a node that
-//! slid is committed at `|e| = e_c` exactly). A node on a symmetry line (the peak `x = 0`, the
+//! slid is committed at `|e| = e_c` exactly); under exact stick (`e_c = 0`), when it is held. A
+//! node on a symmetry line (the peak `x = 0`, the
 //! valley `x = ½`) has no sliding unknown: it sticks when its face neighbour does, so that a stick
 //! zone reaching the line continues in its mirror image.
 //!
 //! # Where a front lies
 //! Inside a stick zone the mobilisation `r = |e|/e_c` is the traction over the slip threshold,
-//! `|τ|/τ_sl`; it reaches 1 at a stick–slip front, where in the continuum it does so like
+//! `|τ|/τ_sl` (under exact stick that ratio itself, the node's friction force over its threshold,
+//! `|T|/L`); it reaches 1 at a stick–slip front, where in the continuum it does so like
 //! `1 − r ∝ √(distance)` (the square-root behaviour of the Cattaneo–Mindlin traction at the edge
 //! of its stick zone). So `(1 − r)²` is linear in `x` near the front: it is extrapolated to zero
 //! from the zone's last two nodes and the front placed there, clipped to the element between the
@@ -34,15 +36,19 @@ pub(crate) struct StickZone {
     pub(crate) central_half_width: f64,
 }
 
-/// Per contact-face node of `st` (face order): whether it sticks (module documentation); all
-/// `false` without friction.
-pub(crate) fn stick_nodes(model: &Model, st: &State) -> Vec<bool> {
+/// Per contact-face node of `st` (face order), `grad` its internal forces: whether it sticks
+/// (module documentation); all `false` without friction.
+pub(crate) fn stick_nodes(model: &Model, st: &State, grad: &[f64]) -> Vec<bool> {
     let n = model.mesh.bottom.len();
     let Some(law) = model.friction else {
         return vec![false; n];
     };
+    let mobilisation = mobilisation(model, st, grad);
     let mut stick: Vec<bool> = (0..n)
-        .map(|k| st.active[k] && st.slip[k].elastic.abs() < law.slip_c)
+        .map(|k| match law.exact_stick() {
+            true => st.active[k] && mobilisation[k] < 1.0,
+            false => st.active[k] && st.slip[k].elastic.abs() < law.slip_c,
+        })
         .collect();
     if n >= 2 {
         stick[0] = st.active[0] && stick[1];
@@ -52,16 +58,18 @@ pub(crate) fn stick_nodes(model: &Model, st: &State) -> Vec<bool> {
 }
 
 /// The stick intervals of `st` in `[0, ½]` (current `x`, in order), each from front to front,
-/// before they are cut to the contact patches ([`cut_to_patches`]).
-pub(crate) fn stick_runs(model: &Model, st: &State) -> Vec<[f64; 2]> {
-    let Some(law) = model.friction else {
+/// before they are cut to the contact patches ([`cut_to_patches`]); `grad` the state's internal
+/// forces.
+pub(crate) fn stick_runs(model: &Model, st: &State, grad: &[f64]) -> Vec<[f64; 2]> {
+    if model.friction.is_none() {
         return Vec::new();
-    };
-    let stick = stick_nodes(model, st);
+    }
+    let stick = stick_nodes(model, st, grad);
     let b = &model.mesh.bottom;
     let last = b.len() - 1;
     let x = |k: usize| st.x[b[k]][0];
-    let gap = |k: usize| (1.0 - st.slip[k].elastic.abs() / law.slip_c).powi(2);
+    let mobilisation = mobilisation(model, st, grad);
+    let gap = |k: usize| (1.0 - mobilisation[k]).powi(2);
     // the front beyond stick node `j` toward its slip neighbour `out`, from `j` and the stick
     // node `inner` before it (if any)
     let front = |j: usize, out: usize, inner: Option<usize>| {
@@ -95,6 +103,43 @@ pub(crate) fn stick_runs(model: &Model, st: &State) -> Vec<[f64; 2]> {
         intervals.push([start, end]);
     }
     intervals
+}
+
+/// Under exact stick, a friction force within this fraction of the largest threshold on the
+/// face of its own threshold is at the threshold, and so is a threshold this small: such a node
+/// counts as sliding. At the threshold a held node and a node sliding by nothing are the same
+/// state to the Newton tolerance of the forces (10⁻¹⁰ of the largest nodal force), and the Newton
+/// path decides which label it carries; the node that has just touched at an edge event carries
+/// a normal force at that tolerance, and its `|T|/L` is a ratio of two round-off values. Far above
+/// that tolerance, far below the margin of any node that holds load.
+const AT_THRESHOLD: f64 = 1e-6;
+
+/// Per contact-face node of a frictional `st` (`grad` its internal forces), the mobilisation
+/// `r ∈ [0, 1]`: the committed elastic slip over the band, `|e|/e_c`, under the penalty law;
+/// the friction force over the threshold, `|T|/L`, under exact stick, 1 at the threshold
+/// ([`AT_THRESHOLD`]).
+fn mobilisation(model: &Model, st: &State, grad: &[f64]) -> Vec<f64> {
+    let law = model.friction.expect("a frictional model");
+    match law.exact_stick() {
+        true => {
+            let limits = model.friction_thresholds(st, grad);
+            let margin = AT_THRESHOLD * limits.iter().fold(0.0_f64, |m, &l| m.max(l));
+            let forces = model.tangential_forces(st, grad);
+            forces
+                .iter()
+                .zip(&limits)
+                .map(|(t, &l)| match l - t.abs() > margin {
+                    true => t.abs() / l,
+                    false => 1.0,
+                })
+                .collect()
+        }
+        false => st
+            .slip
+            .iter()
+            .map(|h| (h.elastic.abs() / law.slip_c).min(1.0))
+            .collect(),
+    }
 }
 
 /// The stick `runs` ([`stick_runs`]) cut to the contact `patches` (`[start, end]` each, in

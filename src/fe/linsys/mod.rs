@@ -307,6 +307,14 @@ impl SparseSystem {
         symmetric + self.updates.get(r, c)
     }
 
+    /// Row `r` of the symmetric part, its entries `(column, value)` (column `r` of the
+    /// pattern, read by symmetry).
+    pub fn symmetric_row(&self, r: usize) -> Vec<(usize, f64)> {
+        (self.col_ptr[r]..self.col_ptr[r + 1])
+            .map(|k| (self.row_idx[k], self.values[k]))
+            .collect()
+    }
+
     /// Value position of entry `(r, c)`, if it is in the pattern.
     fn position(&self, r: usize, c: usize) -> Option<usize> {
         let s = &self.row_idx[self.col_ptr[c]..self.col_ptr[c + 1]];

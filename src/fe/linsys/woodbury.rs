@@ -136,7 +136,8 @@ impl SparseSystem {
     /// and cost a dense `m × m` solve each. At most `max_switches` changed solves; if
     /// `switch` has not settled by then, or the settled system's solution is inaccurate,
     /// the solutions of the assembled system are returned. Returns the number of changed
-    /// solves behind the solutions returned (`max_switches` when the switch gave up). Fails at
+    /// solves behind the solutions returned, `None` when the switch gave up and the
+    /// assembled system's solutions are returned. Fails at
     /// once, factorising nothing, when the caller asked the solve to stop
     /// ([`crate::fe::interrupt`]).
     pub fn solve_switching_rows(
@@ -144,7 +145,7 @@ impl SparseSystem {
         rhs: &mut [Vec<f64>],
         max_switches: usize,
         mut switch: impl FnMut(&[Vec<f64>]) -> Option<Vec<RowChange>>,
-    ) -> Result<usize, LinSolveError> {
+    ) -> Result<Option<usize>, LinSolveError> {
         // a solve the caller asked to stop factorises nothing more (`crate::fe::interrupt`)
         if crate::fe::interrupt::requested() {
             return Err(LinSolveError::Numeric(
@@ -153,7 +154,7 @@ impl SparseSystem {
         }
         if self.updates.is_empty() {
             self.solve_symmetric(rhs)?;
-            return Ok(0);
+            return Ok(Some(0));
         }
         let parts = self.woodbury_parts(rhs)?;
         let assembled = self.woodbury_reduced(&parts, &[]);
@@ -178,7 +179,7 @@ impl SparseSystem {
             let reduced = current.as_ref().expect("settled on a solution");
             if let Some(x) = self.woodbury_full(&parts, rhs, &changes, reduced)? {
                 rhs.clone_from_slice(&x);
-                return Ok(passes);
+                return Ok(Some(passes));
             }
         }
         let full = match &assembled {
@@ -189,11 +190,7 @@ impl SparseSystem {
             Some(x) => rhs.clone_from_slice(&x),
             None => self.solve_updated_by_lu(rhs)?,
         }
-        Ok(if settled && passes == 0 {
-            0
-        } else {
-            max_switches
-        })
+        Ok((settled && passes == 0).then_some(0))
     }
 
     /// The symmetric solves `S⁻¹ bⱼ` (one factorisation of `S`) and `S⁻¹ E` on the
@@ -414,7 +411,7 @@ mod tests {
         let passes = sys
             .solve_switching_rows(&mut restless, 3, |_| Some(vec![change.clone()]))
             .expect("solvable");
-        assert_eq!(passes, 3);
+        assert_eq!(passes, None);
         assert_eq!(restless, assembled);
     }
 }

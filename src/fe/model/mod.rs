@@ -360,9 +360,8 @@ impl Model {
         let neighbours = [k.wrapping_sub(1), k + 1].map(|m| b.get(m).map(|&nm| st.x[nm]));
         let [normal, _] = self.node_contact_force(st, grad, n);
         law.eval(
-            self.contact_slope(st, n),
-            curvature,
-            self.trial_elastic_slip(st, k),
+            (self.contact_slope(st, n), curvature),
+            (&st.slip[k], self.trial_elastic_slip(st, k)),
             st.x[n],
             neighbours,
             normal,
@@ -376,7 +375,7 @@ impl Model {
         let Some(law) = self.friction else { return };
         for (k, &n) in self.mesh.bottom.iter().enumerate() {
             let trial = st.active[k].then(|| self.trial_elastic_slip(st, k));
-            st.slip[k] = law.commit(trial, st.x[n][0]);
+            st.slip[k] = law.commit(trial, st.x[n][0], st.slip[k].held);
         }
     }
 

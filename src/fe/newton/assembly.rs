@@ -35,6 +35,10 @@ pub struct Forces {
     /// Largest element-level nodal force component (the round-off scale of the
     /// assembled residual).
     pub force_scale: f64,
+    /// How far the state is from the exact-stick friction law, as a force (units `G λ`; 0
+    /// without friction and under the penalty law): Newton converges where this and the
+    /// residual are within its tolerance.
+    pub friction_complementarity: f64,
 }
 
 /// The mutable state of the Newton solves of one model.
@@ -159,13 +163,15 @@ impl Assembly {
                 }
             }
         }
+        let mut friction_complementarity = 0.0;
         if let Some(law) = model.friction {
             let sinks = FrictionSinks {
                 resid: &mut resid,
                 dresid_dd: &mut dresid_dd,
                 tangent: with_matrix.then_some((&mut self.sys, &mut self.friction_rows)),
             };
-            add_friction(model, st, &map, &law, (&grad, &normal_rows), sinks);
+            friction_complementarity =
+                add_friction(model, st, &map, &law, (&grad, &normal_rows), sinks);
         }
         let forces = Forces {
             energy,
@@ -173,6 +179,7 @@ impl Assembly {
             resid,
             dresid_dd,
             force_scale,
+            friction_complementarity,
         };
         self.cache = Some((st.clone(), forces.clone()));
         Some(forces)

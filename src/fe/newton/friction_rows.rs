@@ -21,6 +21,14 @@ pub(in crate::fe) struct FrictionSinks<'a> {
 
 /// Adds the friction of every active sliding contact-face node of `st` (`grad` its internal
 /// forces, `normal_rows` the normal-force rows of the element loop, with the matrix) to `sinks`.
+/// Returns the law's complementarity residual ([`complementarity`]), 0 under the penalty law.
+///
+/// Under exact stick a held node's equation is its constraint `k (x − x_anchor) = 0`
+/// instead of its equilibrium `c·g = 0` (its friction force is the reaction): the residual
+/// is replaced, and in the tangent the row becomes `k e_x` through a row update on the
+/// symmetric part, which keeps the node's column (the other equations still depend on its
+/// position); the equilibrium row is kept in the [`FrictionRow`] for the semismooth step's
+/// decisions and switches ([`HeldRow`]).
 pub(in crate::fe) fn add_friction(
     model: &Model,
     st: &State,
@@ -28,30 +36,115 @@ pub(in crate::fe) fn add_friction(
     law: &FrictionLaw,
     (grad, normal_rows): (&[f64], &[NormalForceRow]),
     sinks: FrictionSinks<'_>,
-) {
+) -> f64 {
     let FrictionSinks {
         resid,
         dresid_dd,
         mut tangent,
     } = sinks;
+    let mut worst = 0.0_f64;
     for (k, &n) in model.mesh.bottom.iter().enumerate() {
         if !st.active[k] || map[n][0].is_none() {
             continue;
         }
         let f = model.friction_eval(st, k, grad, law);
-        resid[2 * n] += f.force;
+        let equilibrium = resid[2 * n];
+        let offset = st.x[n][0] - st.slip[k].anchor_x;
+        let held = law.exact_stick() && f.branch == Branch::Stick && f.regime != Regime::Open;
+        worst = worst.max(complementarity(law, &f, equilibrium));
+        resid[2 * n] = match held {
+            true => law.hold_stiffness * offset,
+            false => equilibrium + f.force,
+        };
         let Some((sys, friction_rows)) = tangent.as_mut() else {
             continue;
         };
-        let row = friction_row(model, law, map, k, &f, grad, &normal_rows[k]);
+        let held_row = law.exact_stick().then(|| HeldRow {
+            equilibrium: sys.symmetric_row(2 * n),
+            resid: equilibrium,
+            resid_dd: dresid_dd[2 * n],
+            offset,
+            stiffness: law.hold_stiffness,
+        });
+        let row = friction_row(model, law, map, (k, &f), grad, &normal_rows[k], held_row);
         let assembled = row.law_row(row.at, law.slip_c);
-        sys.values[sys.diag_pos[2 * n]] += assembled.own;
-        sys.add_to_row(2 * n, 2 * n, 0.0);
+        match held {
+            true => sys.add_to_row(2 * n, 2 * n, assembled.own),
+            false => {
+                sys.values[sys.diag_pos[2 * n]] += assembled.own;
+                sys.add_to_row(2 * n, 2 * n, 0.0);
+            }
+        }
         for (col, v) in assembled.others {
             sys.add_to_row(2 * n, col, v);
         }
         dresid_dd[2 * n] += assembled.force_dd;
         friction_rows.push(row);
+    }
+    worst
+}
+
+/// How far node `f` is from the exact-stick law, as a force (units `G λ`; 0 under the
+/// penalty law and on an open node), given its equilibrium residual `c·g`: a held node whose
+/// friction force exceeds its threshold by `(|c·g| − w L)⁺`, a sliding one whose slip runs
+/// against its force by `k (−φ s)⁺`. Newton converges only where this is within the residual
+/// tolerance too, so that a converged state is on the law.
+fn complementarity(law: &FrictionLaw, f: &FrictionEval, equilibrium: f64) -> f64 {
+    if !law.exact_stick() || f.regime == Regime::Open {
+        return 0.0;
+    }
+    match f.branch {
+        Branch::Stick => (equilibrium.abs() - f.w * f.limit).max(0.0),
+        slide => law.hold_stiffness * (-slide.sign() * f.trial_slip).max(0.0),
+    }
+}
+
+/// What a node's row needs under exact stick: its equilibrium row (the symmetric tangent's
+/// row, own column included), residual `c·g` and `∂(c·g)/∂d`, the offset `x − x_anchor` and
+/// the scale `k` of its hold row. The semismooth step reads the equilibrium row to linearise
+/// a held node's reaction, and replaces it to hold a sliding node.
+#[derive(Clone, Debug, Default)]
+pub(in crate::fe) struct HeldRow {
+    pub(in crate::fe) equilibrium: Vec<(usize, f64)>,
+    pub(in crate::fe) resid: f64,
+    pub(in crate::fe) resid_dd: f64,
+    pub(in crate::fe) offset: f64,
+    pub(in crate::fe) stiffness: f64,
+}
+
+impl HeldRow {
+    /// The change that holds the node (`row` its equation): `k e_x` replaces the
+    /// equilibrium row, `k (x − x_anchor)` its residual and 0 its `∂/∂d`.
+    fn law_row(&self, row: usize) -> LawRow {
+        let own: f64 = self
+            .equilibrium
+            .iter()
+            .filter(|e| e.0 == row)
+            .map(|e| e.1)
+            .sum();
+        LawRow {
+            own: self.stiffness - own,
+            others: self
+                .equilibrium
+                .iter()
+                .filter(|e| e.0 != row)
+                .map(|&(c, v)| (c, -v))
+                .collect(),
+            force: self.stiffness * self.offset - self.resid,
+            force_dd: -self.resid_dd,
+        }
+    }
+
+    /// The node's equilibrium residual `c·g` after the step `(δq, δd)`, linearised: the
+    /// reaction a held node needs is `−` this.
+    pub(in crate::fe) fn resid_after(&self, step: &[f64], dd: f64) -> f64 {
+        self.resid
+            + self.resid_dd * dd
+            + self
+                .equilibrium
+                .iter()
+                .map(|&(c, v)| v * step[c])
+                .sum::<f64>()
     }
 }
 
@@ -71,10 +164,10 @@ fn friction_row(
     model: &Model,
     law: &FrictionLaw,
     map: &SlotMap,
-    k: usize,
-    f: &FrictionEval,
+    (k, f): (usize, &FrictionEval),
     grad: &[f64],
     normal: &NormalForceRow,
+    held: Option<HeldRow>,
 ) -> FrictionRow {
     let n = model.mesh.bottom[k];
     let (own_phi, own_dphi) = f.coulomb_own(law, [grad[2 * n], grad[2 * n + 1]]);
@@ -102,7 +195,11 @@ fn friction_row(
         w_limit: own_dphi,
         per_phi_dd: 0.0,
     };
-    f.row(2 * n, coulomb, orowan)
+    FrictionRow {
+        face: k,
+        held,
+        ..f.row(2 * n, coulomb, orowan)
+    }
 }
 
 /// The friction part of one active node's tangent row under one regime, per unit `φ` and
@@ -159,6 +256,10 @@ pub(in crate::fe) struct LawPiece {
 pub(in crate::fe) struct FrictionRow {
     /// Equation (slot) of the node's sliding unknown.
     pub row: usize,
+    /// The node's index on the contact face.
+    pub face: usize,
+    /// Under exact stick, what holding the node needs (none under the penalty law).
+    pub held: Option<HeldRow>,
     /// Trial elastic slip `e*` at the assembled state.
     pub trial_slip: f64,
     /// `w = √(1 + y_s'²)`.
@@ -198,6 +299,9 @@ impl FrictionRow {
         let Some(r) = self.regime_row(on.regime) else {
             return LawRow::default();
         };
+        if let (Branch::Stick, Some(held)) = (on.slip, &self.held) {
+            return held.law_row(self.row);
+        }
         let (phi, dphi) = on.slip.mobilisation(self.trial_slip, slip_c, self.w);
         let phi_landed = phi.clamp(-1.0, 1.0);
         let (own, others) = r.per_phi.split_first().expect("the own column first");
@@ -207,6 +311,11 @@ impl FrictionRow {
             force: phi * r.w_limit,
             force_dd: phi_landed * r.per_phi_dd,
         }
+    }
+
+    /// `w L` of `regime` after the step `δq`, linearised (none when open).
+    pub(in crate::fe) fn w_limit_after(&self, regime: Regime, step: &[f64]) -> Option<f64> {
+        self.regime_row(regime).map(|r| r.w_limit_after(step))
     }
 
     /// The regime to assume after the step `δq`: the smaller of the linearised thresholds
@@ -251,6 +360,8 @@ impl FrictionEval {
     ) -> FrictionRow {
         FrictionRow {
             row,
+            face: 0,
+            held: None,
             trial_slip: self.trial_slip,
             w: self.w,
             at: LawPiece {
@@ -315,6 +426,8 @@ mod tests {
         };
         let row = FrictionRow {
             row: 4,
+            face: 0,
+            held: None,
             trial_slip: 60.0 * slip_c,
             w: 1.3,
             at,

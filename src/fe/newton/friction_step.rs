@@ -15,6 +15,16 @@
 //! factorisation (`SparseSystem::solve_switching_rows`), until the pieces agree with the
 //! step; if they have not within [`MAX_BRANCH_SWITCHES`], the assembled step is taken.
 //!
+//! Under exact stick ([`crate::fe::contact::friction`]) the pieces are chosen the same way, by
+//! the primal–dual active-set decision [`Branch::decide`] on the linearised step: a held
+//! node's reaction from its equilibrium row, a sliding node's slip `s + w δx`, and the
+//! linearised threshold (`decide_exact`). Holding a node replaces its equilibrium row by its
+//! constraint row, a row change like any other, so one factorisation settles every switch of a
+//! step (within [`MAX_BRANCH_SWITCHES`], as above). The pieces the step was solved on are
+//! returned, for the state after the step to hold. Not done, because it made curves fail to
+//! converge (AR 0.3, τ_max/E* 0.1, coarse mesh, `c_t` 10 G): keeping a node's piece once it has
+//! changed twice or more within one step.
+//!
 //! Why: the slip tangent is flat, so a node whose solution lies in the narrow stick band is
 //! thrown from slip one way to slip the other and back (Newton's cycle on a saturating
 //! law), and a node near the Coulomb–Orowan crossover flips between the two thresholds; the
@@ -26,12 +36,12 @@
 //! take whatever branch its step lands on; switching into and out of the open regime
 //! ([`crate::fe::contact::friction::FrictionRow::regime_after`]); the switch in the predictor's load tangent.
 
-use crate::fe::contact::friction::Branch;
+use crate::fe::contact::friction::{Branch, Regime};
 use crate::fe::error::StepFail;
 use crate::fe::linsys::{LinSolveError, RowChange};
 use crate::fe::model::Model;
 use crate::fe::newton::assembly::Assembly;
-use crate::fe::newton::friction_rows::LawPiece;
+use crate::fe::newton::friction_rows::{FrictionRow, HeldRow, LawPiece};
 use crate::fe::SolveOptions;
 
 /// Most changed solves per Newton step in the semismooth choice of the friction branches.
@@ -41,25 +51,27 @@ const MAX_BRANCH_SWITCHES: usize = 8;
 
 /// Solve the Newton system of iteration `iteration` on the last assembled tangent (`asm`),
 /// `rhs[0] = −r` and, if present, `rhs[1] = −∂r/∂d`; `direction` maps the solutions to the
-/// step `δq` (for the bordered solve, a combination of the two). With friction and
-/// [`NewtonOptions::semismooth_friction`], the pieces of the friction law are chosen by where
-/// the step lands (module documentation); otherwise the assembled tangent is solved as it
-/// is. A failed solve ends the Newton solve ([`StepFail::Linear`]).
+/// step `(δq, δd)` (for the bordered solve, a combination of the two; `δd = 0` otherwise).
+/// With friction and [`NewtonOptions::semismooth_friction`], the pieces of the friction law
+/// are chosen by where the step lands (module documentation); otherwise the assembled
+/// tangent is solved as it is. Returns, under exact stick, each friction node's piece of the
+/// law in the step solved (`(face index, branch)`), which the state after the step holds;
+/// `None` otherwise. A failed solve ends the Newton solve ([`StepFail::Linear`]).
 pub(crate) fn solve_newton_step(
     model: &Model,
     asm: &mut Assembly,
     opts: &SolveOptions,
     rhs: &mut [Vec<f64>],
     iteration: usize,
-    direction: impl Fn(&[Vec<f64>]) -> Vec<f64>,
-) -> Result<(), StepFail> {
+    direction: impl Fn(&[Vec<f64>]) -> (Vec<f64>, f64),
+) -> Result<Option<Vec<(usize, Branch)>>, StepFail> {
     let failed = |e: LinSolveError| StepFail::Linear {
         iteration,
         message: e.to_string(),
     };
     let law = match model.friction {
-        Some(law) if opts.newton.semismooth_friction => law,
-        _ => return asm.sys.solve(rhs).map_err(failed),
+        Some(law) if opts.newton.semismooth_friction || law.exact_stick() => law,
+        _ => return asm.sys.solve(rhs).map(|_| None).map_err(failed),
     };
     let rows = &asm.friction_rows;
     let with_load_column = rhs.len() > 1;
@@ -68,17 +80,27 @@ pub(crate) fn solve_newton_step(
         .iter()
         .map(|r| BranchChoice::assembled(r.at.slip))
         .collect();
+    let c_t = opts.newton.stick_decision_stiffness * law.hold_stiffness;
     let switching = asm
         .sys
         .solve_switching_rows(rhs, MAX_BRANCH_SWITCHES, |solutions| {
-            let step = direction(solutions);
+            let (step, dd) = direction(solutions);
             let mut landed = assumed.clone();
             for (i, r) in rows.iter().enumerate() {
-                let slip = Branch::of(r.trial_slip + r.w * step[r.row], law.slip_c);
-                choices[i] = choices[i].after_step(r.at.slip, slip);
-                landed[i] = LawPiece {
-                    regime: r.regime_after(&step),
-                    slip: choices[i].assumed,
+                let regime = r.regime_after(&step);
+                landed[i] = match &r.held {
+                    Some(held) => LawPiece {
+                        regime,
+                        slip: decide_exact(r, held, (assumed[i], regime), (&step, dd), c_t),
+                    },
+                    None => {
+                        let slip = Branch::of(r.trial_slip + r.w * step[r.row], law.slip_c);
+                        choices[i] = choices[i].after_step(r.at.slip, slip);
+                        LawPiece {
+                            regime,
+                            slip: choices[i].assumed,
+                        }
+                    }
                 };
             }
             if landed == assumed {
@@ -104,7 +126,42 @@ pub(crate) fn solve_newton_step(
                 .collect();
             Some(changes)
         });
-    switching.map(|_| ()).map_err(failed)
+    let switched = switching.map_err(failed)?;
+    if !law.exact_stick() {
+        return Ok(None);
+    }
+    let solved: Vec<LawPiece> = match switched {
+        Some(_) => assumed,
+        None => rows.iter().map(|r| r.at).collect(),
+    };
+    Ok(Some(
+        rows.iter()
+            .zip(solved)
+            .map(|(r, piece)| (r.face, piece.slip))
+            .collect(),
+    ))
+}
+
+/// The exact-stick piece of node `r` after the step `(δq, δd)` solved with the node on
+/// `assumed` (and `regime` its threshold's regime after the step): [`Branch::decide`] on the
+/// linearised friction force (a held node's reaction `−(c·g)/w` from its equilibrium row, a
+/// sliding node's `φ L`), its linearised slip from the anchor, `s + w δx`, and its linearised
+/// threshold. An open node keeps its piece (it has no friction).
+fn decide_exact(
+    r: &FrictionRow,
+    held: &HeldRow,
+    (assumed, regime): (LawPiece, Regime),
+    (step, dd): (&[f64], f64),
+    c_t: f64,
+) -> Branch {
+    let limit = r.w_limit_after(regime, step).map_or(0.0, |wl| wl / r.w);
+    let force = match (assumed.slip, assumed.regime) {
+        (_, Regime::Open) => 0.0,
+        (Branch::Stick, _) => -held.resid_after(step, dd) / r.w,
+        (slide, _) => slide.sign() * limit,
+    };
+    let slip = r.trial_slip + r.w * step[r.row];
+    Branch::decide(force, slip, limit.max(0.0), c_t)
 }
 
 /// One node's return-mapping branch in the semismooth choice of a Newton step.

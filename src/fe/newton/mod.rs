@@ -81,6 +81,21 @@ pub(crate) fn inf_norm(v: &[f64]) -> f64 {
     v.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
 }
 
+/// The largest entry of a state's residual, or its distance from the exact-stick friction
+/// law if that is larger ([`Forces::friction_complementarity`]).
+fn residual_norm(f: &Forces) -> f64 {
+    inf_norm(&f.resid).max(f.friction_complementarity)
+}
+
+/// `st` with the exact-stick pieces of the law that its Newton step was solved with
+/// ([`solve_newton_step`]; none under the penalty law).
+fn holding(mut st: State, held: Option<&[(usize, crate::fe::contact::friction::Branch)]>) -> State {
+    for &(k, branch) in held.unwrap_or_default() {
+        st.slip[k].held = branch;
+    }
+    st
+}
+
 /// What a line-search trial must decrease.
 pub(crate) enum Decrease<'a> {
     /// The energy, Armijo: `Π(α) ≤ Π₀ + c α slope + ε |Π₀|` with `slope = r·δ < 0`
@@ -176,7 +191,7 @@ pub(crate) fn newton(
                 residual: last_res,
             });
         };
-        let res = inf_norm(&f.resid);
+        let res = residual_norm(&f);
         let prev = std::mem::replace(&mut last_res, res);
         let tol = residual_tolerance(model, opts, rtol, f.force_scale);
         if res <= tol || at_round_off_floor(last_step, res, prev, tol) {
@@ -189,17 +204,22 @@ pub(crate) fn newton(
             .assemble(model, st, true)
             .expect("state assembled above is not inverted");
         let mut rhs = vec![f.resid.iter().map(|r| -r).collect::<Vec<f64>>()];
-        solve_newton_step(model, asm, opts, &mut rhs, it, |x| x[0].clone())?;
+        let held = solve_newton_step(model, asm, opts, &mut rhs, it, |x| (x[0].clone(), 0.0))?;
         let dq = rhs.pop().expect("one right-hand side");
         last_step = inf_norm(&dq);
-        if last_step <= opts.newton.increment_atol {
-            // correction below the round-off of the positions: converged
-            *st = model.updated(st, &dq, 1.0);
+        let stepped = |m: &Model, alpha: f64| holding(m.updated(st, &dq, alpha), held.as_deref());
+        let same_pieces = held
+            .as_deref()
+            .is_none_or(|h| h.iter().all(|&(k, b)| st.slip[k].held == b));
+        if last_step <= opts.newton.increment_atol && same_pieces {
+            // correction below the round-off of the positions, on the same pieces of the
+            // friction law: converged
+            *st = stepped(model, 1.0);
             return Ok(it + 1);
         }
         if model.kin == Kinematics::Linear && model.is_potential() {
             // quadratic energy: the Newton step is exact
-            *st = model.updated(st, &dq, 1.0);
+            *st = stepped(model, 1.0);
             continue;
         }
         let slope: f64 = f.resid.iter().zip(&dq).map(|(r, d)| r * d).sum();
@@ -215,8 +235,7 @@ pub(crate) fn newton(
                 merit: &residual_norm,
             }
         };
-        let trial_at = |m: &Model, alpha: f64| m.updated(st, &dq, alpha);
-        match line_search(model, asm, opts.newton.max_line_search, trial_at, decrease) {
+        match line_search(model, asm, opts.newton.max_line_search, stepped, decrease) {
             Some(t) => *st = t,
             None => {
                 return Err(StepFail::Diverged {
@@ -292,7 +311,7 @@ pub(crate) fn newton_bordered(
             });
         };
         let (c, _) = model.edge_constraint(st, k);
-        let res = inf_norm(&f.resid);
+        let res = residual_norm(&f);
         let prev = std::mem::replace(&mut last_res, res);
         let gtol = if rtol > opts.newton.residual_rtol {
             LOOSE_GAP_FACTOR * gap_tol
@@ -321,15 +340,15 @@ pub(crate) fn newton_bordered(
             f.resid.iter().map(|r| -r).collect::<Vec<f64>>(),
             f.dresid_dd.iter().map(|r| -r).collect::<Vec<f64>>(),
         ];
-        // the bordered step `(δd, δq)` from the two solutions
+        // the bordered step `(δq, δd)` from the two solutions
         let rate = model.gap_rate_along(st, k);
         let bordered_step = |z1: &[f64], z2: &[f64]| {
             let dd = -(c + rate(z1)) / rate(z2);
             let dq: Vec<f64> = z1.iter().zip(z2).map(|(a, b)| a + b * dd).collect();
-            (dd, dq)
+            (dq, dd)
         };
-        solve_newton_step(model, asm, opts, &mut rhs, it, |z| {
-            bordered_step(&z[0], &z[1]).1
+        let held = solve_newton_step(model, asm, opts, &mut rhs, it, |z| {
+            bordered_step(&z[0], &z[1])
         })?;
         let (z1, z2) = (&rhs[0], &rhs[1]);
         let den = rate(z2);
@@ -340,7 +359,7 @@ pub(crate) fn newton_bordered(
                 reason: "edge constraint insensitive to the slab displacement".into(),
             });
         }
-        let (dd, dq) = bordered_step(z1, z2);
+        let (dq, dd) = bordered_step(z1, z2);
         last_step = inf_norm(&dq);
         let edge_merit = |m: &Model, trial: &State, ft: &Forces| {
             let (ct, _) = m.edge_constraint(trial, k);
@@ -358,7 +377,7 @@ pub(crate) fn newton_bordered(
             let mut trial = st.clone();
             trial.d += alpha * dd;
             m.enforce_constraints(&mut trial);
-            m.updated(&trial, &dq, alpha)
+            holding(m.updated(&trial, &dq, alpha), held.as_deref())
         };
         match line_search(
             model,

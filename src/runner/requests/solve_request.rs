@@ -36,6 +36,8 @@ pub struct SolveRequest {
     pub tau_max_mpa: f64,
     /// Friction coefficient μ (≥ 0).
     pub mu: f64,
+    /// Elastic slip `e_c` over the face element length (≥ 0; 0 = exact stick).
+    pub elastic_slip_over_element: f64,
     /// Plane-strain modulus E* in MPa (> 0).
     pub estar_mpa: f64,
     /// Bulk over shear modulus κ/G (> 0).
@@ -78,6 +80,7 @@ impl SolveRequest {
             finer_harmonics: FinerHarmonics::NONE,
             tau_max_mpa: 0.0,
             mu: defaults::friction_coefficient(),
+            elastic_slip_over_element: defaults::elastic_slip_over_element(),
             estar_mpa: defaults::fe_estar_mpa(),
             kappa_over_g: defaults::kappa_over_g(),
             thickness_over_lambda: defaults::thickness_over_lambda(),
@@ -170,6 +173,11 @@ impl SolveRequest {
         // zero is the frictionless interface here; a frictional one's μ and τ_max are > 0
         non_negative("--tau-max-mpa", self.tau_max_mpa)?;
         non_negative("--mu", self.mu)?;
+        within(
+            "--elastic-slip-over-element",
+            &input_ranges::ELASTIC_SLIP_OVER_ELEMENT,
+            self.elastic_slip_over_element,
+        )?;
         let x = self.until_a_over_lambda;
         within(
             "--until-a-over-lambda",
@@ -235,7 +243,7 @@ impl SolveRequest {
             thickness_over_lambda: self.thickness_over_lambda,
             kappa_over_g: self.kappa_over_g,
             friction_coefficient: self.mu,
-            elastic_slip_over_element: defaults::elastic_slip_over_element(),
+            elastic_slip_over_element: self.elastic_slip_over_element,
             kinematics: self.kinematics,
         };
         let (mesh, tolerance_choice) = match self.tolerance {

@@ -36,7 +36,7 @@ pub struct FingertipFe {
     /// Elastic slip at the friction threshold over the mean face element length (R3; default in
     /// `crate::defaults`).
     #[serde(default)]
-    pub elastic_slip_over_element: Option<Bounded<Positive>>,
+    pub elastic_slip_over_element: Option<Bounded<NonNegative>>,
     /// `finite` (the paper's physics) or `linear`.
     #[serde(default)]
     pub kinematics: Kinematics,
