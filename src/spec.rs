@@ -13,6 +13,9 @@ use crate::defaults;
 use crate::fe::{Kinematics, MeshLevel};
 use crate::models::{CoefficientSet, ModelKind, Reading};
 use crate::profile::Profile;
+
+mod profile_field;
+pub use profile_field::ProfileField;
 use serde::de::{self, DeserializeOwned, Deserializer};
 use serde::Deserialize;
 use std::fmt;
@@ -467,8 +470,9 @@ impl Validator<'_> {
     }
 
     /// The rigid surface of a single FE case whose section is `fe`: the sinusoid of
-    /// `{prefix}.aspect_ratio` or the cosine harmonics of `{prefix}.profile`
-    /// (`[[1, AR₁], [n, AR₂], …]`, docs/replication.md R13), exactly one of the two. A profile
+    /// `{prefix}.aspect_ratio` or the `{prefix}.profile` ([`ProfileField`]: harmonics
+    /// `[[1, AR₁], [n, AR₂], …]`, docs/replication.md R13, or a Weierstrass profile, R14),
+    /// exactly one of the two. A profile
     /// is refused with a `tolerance` (the measured errors are of single sinusoids) and where the
     /// solver cannot take it at the section's mesh (`fe::validate`: unresolved, too steep).
     pub fn fe_surface(
@@ -476,12 +480,12 @@ impl Validator<'_> {
         prefix: &str,
         fe: &FeSection,
         aspect_ratio: Option<f64>,
-        profile: Option<&[(u32, f64)]>,
+        profile: Option<&ProfileField>,
     ) -> Result<Profile, SpecError> {
         let field = format!("{prefix}.profile");
-        let pairs = match (aspect_ratio, profile) {
+        let given = match (aspect_ratio, profile) {
             (Some(ar), None) => return Ok(Profile::sinusoid(ar)),
-            (None, Some(pairs)) => pairs,
+            (None, Some(given)) => given,
             (a, p) => {
                 let given = match (a, p) {
                     (Some(_), Some(_)) => "both",
@@ -491,12 +495,13 @@ impl Validator<'_> {
                     &format!("{prefix}.aspect_ratio"),
                     None,
                     format!("{given} of aspect_ratio and profile"),
-                    "exactly one: aspect_ratio = Δ/λ, or profile = [[1, AR₁], [n, AR₂], …]".into(),
+                    "exactly one: aspect_ratio = Δ/λ, or profile = [[1, AR₁], [n, AR₂], …] or \"weierstrass:AR0,gamma,D,K\"".into(),
                 ));
             }
         };
-        let text = format!("{pairs:?}");
-        let profile = Profile::from_pairs(pairs)
+        let text = given.quoted();
+        let profile = given
+            .profile()
             .map_err(|e| self.invalid(&field, None, text.clone(), e.to_string()))?;
         if let Some(t) = fe.tolerance.filter(|_| !profile.is_sinusoid()) {
             return Err(self.invalid(
@@ -540,10 +545,10 @@ impl Validator<'_> {
 ///
 /// # Panics
 /// When neither is given or the profile is malformed: validation refuses such a spec.
-pub fn validated_surface(aspect_ratio: Option<f64>, profile: Option<&[(u32, f64)]>) -> Profile {
+pub fn validated_surface(aspect_ratio: Option<f64>, profile: Option<&ProfileField>) -> Profile {
     match (aspect_ratio, profile) {
         (Some(ar), _) => Profile::sinusoid(ar),
-        (None, Some(pairs)) => Profile::from_pairs(pairs).expect("validated"),
+        (None, Some(given)) => given.profile().expect("validated"),
         (None, None) => unreachable!("validated: aspect_ratio or profile"),
     }
 }

@@ -353,7 +353,8 @@ fn an_incomplete_fe_curve_is_marked_and_fails_run_and_check() {
 }
 
 /// A single-case FE scene takes `aspect_ratio` or `profile`, exactly one; a profile is refused
-/// with a tolerance, and where the mesh cannot resolve it, naming the harmonic.
+/// with a tolerance, and where the mesh cannot resolve it, naming the harmonic; a profile may be
+/// the command line's text, a Weierstrass profile too.
 #[test]
 fn a_surface_is_an_aspect_ratio_or_a_profile() {
     bad_spec(
@@ -392,6 +393,33 @@ fn a_surface_is_an_aspect_ratio_or_a_profile() {
         "confinement = { aspect_ratio = 0.3,",
         "confinement = { profile = [[2, 0.1]],",
         &["hysteresis.confinement.profile", "order 2"],
+    );
+    // the command line's text, a Weierstrass profile among them: its harmonics are checked as
+    // the pairs are (γ 3, K 3: harmonic 9 is beyond the default mesh's coarsest elements)
+    bad_spec(
+        "deformed_mesh_ar030.toml",
+        "aspect_ratio = 0.3",
+        "profile = \"weierstrass:0.05,3,1.3,3\"",
+        &[
+            "deformed_mesh.profile",
+            "weierstrass:0.05,3,1.3,3",
+            "harmonic 9",
+        ],
+    );
+    bad_spec(
+        "deformed_mesh_ar030.toml",
+        "aspect_ratio = 0.3",
+        "profile = \"weierstrass:0.05,3\"",
+        &["deformed_mesh.profile", "weierstrass"],
+    );
+    bad_spec(
+        "deformed_mesh_ar030.toml",
+        "aspect_ratio = 0.3",
+        "profile = 5",
+        &[
+            "profile",
+            "a list of [order, aspect ratio] pairs, or a profile text",
+        ],
     );
 }
 

@@ -22,9 +22,10 @@ use std::ops::ControlFlow;
 pub struct DeformedMeshScene {
     /// Aspect ratio Δ/λ of a sinusoid; or, instead, `profile`.
     pub aspect_ratio: Option<Bounded<Positive>>,
-    /// A profile of cosine harmonics `[[1, AR₁], [n, AR₂], …]` (docs/replication.md R13),
-    /// instead of `aspect_ratio`.
-    pub profile: Option<Vec<(u32, f64)>>,
+    /// A profile of cosine harmonics `[[1, AR₁], [n, AR₂], …]` (docs/replication.md R13) or the
+    /// command line's text for one (`"weierstrass:AR0,gamma,D,K"`, R14), instead of
+    /// `aspect_ratio`.
+    pub profile: Option<crate::spec::ProfileField>,
     /// The FE model; `tau_max_mpa` must hold exactly one value.
     pub fe: FeSection,
 }
@@ -39,7 +40,7 @@ impl Scene for DeformedMeshScene {
             "deformed_mesh",
             &self.fe,
             self.aspect_ratio.map(|a| a.get()),
-            self.profile.as_deref(),
+            self.profile.as_ref(),
         )?;
         v.fe_section("deformed_mesh.fe", &self.fe, None, &[surface.aspect_ratio])?;
         if self.fe.tau_max_mpa.len() != 1 {
@@ -58,7 +59,7 @@ impl DeformedMeshScene {
     /// The rigid surface: the sinusoid of `aspect_ratio` or the `profile` (validated: exactly
     /// one of them).
     fn surface(&self) -> Profile {
-        crate::spec::validated_surface(self.aspect_ratio.map(|a| a.get()), self.profile.as_deref())
+        crate::spec::validated_surface(self.aspect_ratio.map(|a| a.get()), self.profile.as_ref())
     }
 }
 

@@ -53,9 +53,10 @@ pub struct HysteresisScene {
 pub struct Confinement {
     /// Aspect ratio Δ/λ of a sinusoid; or, instead, `profile`.
     pub aspect_ratio: Option<Bounded<Positive>>,
-    /// A profile of cosine harmonics `[[1, AR₁], [n, AR₂], …]` (docs/replication.md R13),
-    /// instead of `aspect_ratio`.
-    pub profile: Option<Vec<(u32, f64)>>,
+    /// A profile of cosine harmonics `[[1, AR₁], [n, AR₂], …]` (docs/replication.md R13) or the
+    /// command line's text for one (`"weierstrass:AR0,gamma,D,K"`, R14), instead of
+    /// `aspect_ratio`.
+    pub profile: Option<crate::spec::ProfileField>,
     /// Shear strength, MPa (at the FE section's `estar_mpa`).
     pub tau_max_mpa: Bounded<NonNegative>,
     /// Layer thicknesses h/λ.
@@ -69,7 +70,7 @@ impl Confinement {
     /// The rigid surface: the sinusoid of `aspect_ratio` or the `profile` (validated: exactly
     /// one of them).
     fn surface(&self) -> Profile {
-        crate::spec::validated_surface(self.aspect_ratio.map(|a| a.get()), self.profile.as_deref())
+        crate::spec::validated_surface(self.aspect_ratio.map(|a| a.get()), self.profile.as_ref())
     }
 }
 
@@ -150,7 +151,7 @@ impl Scene for HysteresisScene {
                 "hysteresis.confinement",
                 &self.fe,
                 c.aspect_ratio.map(|a| a.get()),
-                c.profile.as_deref(),
+                c.profile.as_ref(),
             )?;
             v.non_empty(
                 "hysteresis.confinement.thickness_over_lambda",
