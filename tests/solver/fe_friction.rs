@@ -251,8 +251,8 @@ fn penalty_stick_converges_to_exact_stick_at_first_order() {
     }
 }
 
-/// Exact stick on the sheared block: no node moves along the surface before the block
-/// slides (held nodes are constrained), and the shear then sits on the law's limit `μ p̄`.
+/// Exact stick on the sheared block: the face starts held (no node slides at the first step),
+/// the shear stays below the law's limit `μ p̄` until every node slides, and then sits on it.
 #[test]
 fn exact_stick_holds_the_block_until_it_slides_at_mu_p() {
     let mu = 0.3;

@@ -232,6 +232,25 @@ fn assert_tangent_matches_central_differences(
     f
 }
 
+/// The friction tangent tests' state of the AR 0.2 model `m`: the layer conformed to the
+/// indenter and compressed (compressive contact forces), its first four face nodes active.
+fn pressed_face(m: &model::Model) -> model::State {
+    let mut st = m.initial_state();
+    st.d = 0.06;
+    for (i, x) in st.x.iter_mut().enumerate() {
+        let r = m.mesh.nodes[i];
+        let ys = -0.2 * (1.0 - (std::f64::consts::TAU * r[0]).cos());
+        x[0] += 0.01 * (3.0 * r[0]).sin() * (1.0 + r[1]);
+        x[1] += (1.0 - r[1]) * (ys - 0.05) - 0.06 * r[1]
+            + 0.002 * (5.0 * r[0] + 1.0).cos() * (1.0 - r[1]);
+    }
+    for k in 0..4 {
+        st.active[k] = true;
+    }
+    m.enforce_constraints(&mut st);
+    st
+}
+
 /// Friction rows (regularised Coulomb–Orowan, `src/fe/contact/indenter.rs`): the non-symmetric
 /// tangent against central differences of the reduced residual, with nodes in stick and
 /// in slip, in the Coulomb regime (`τ_max` large) and in the Orowan regime (`μ` large),
@@ -260,20 +279,7 @@ fn friction_tangent_matches_central_differences() {
             let m0 = build_model(&frictionless, &opts);
             let mut asm = assembly::Assembly::new(&m);
             let mut asm0 = assembly::Assembly::new(&m0);
-            let mut st = m.initial_state();
-            st.d = 0.06;
-            // conform to the indenter and compress the layer (compressive contact forces)
-            for (i, x) in st.x.iter_mut().enumerate() {
-                let r = m.mesh.nodes[i];
-                let ys = -0.2 * (1.0 - (std::f64::consts::TAU * r[0]).cos());
-                x[0] += 0.01 * (3.0 * r[0]).sin() * (1.0 + r[1]);
-                x[1] += (1.0 - r[1]) * (ys - 0.05) - 0.06 * r[1]
-                    + 0.002 * (5.0 * r[0] + 1.0).cos() * (1.0 - r[1]);
-            }
-            for k in 0..4 {
-                st.active[k] = true;
-            }
-            m.enforce_constraints(&mut st);
+            let mut st = pressed_face(&m);
             let e_c = m.elastic_slip_limit().expect("friction is built");
             assert!(m0.elastic_slip_limit().is_none());
             // node 1 sticks (|e*| = 0.4 e_c), nodes 2 and 3 slip in opposite directions
@@ -335,19 +341,7 @@ fn exact_stick_tangent_matches_central_differences() {
             };
             let m = build_model(&pb, &opts);
             let mut asm = assembly::Assembly::new(&m);
-            let mut st = m.initial_state();
-            st.d = 0.06;
-            for (i, x) in st.x.iter_mut().enumerate() {
-                let r = m.mesh.nodes[i];
-                let ys = -0.2 * (1.0 - (std::f64::consts::TAU * r[0]).cos());
-                x[0] += 0.01 * (3.0 * r[0]).sin() * (1.0 + r[1]);
-                x[1] += (1.0 - r[1]) * (ys - 0.05) - 0.06 * r[1]
-                    + 0.002 * (5.0 * r[0] + 1.0).cos() * (1.0 - r[1]);
-            }
-            for k in 0..4 {
-                st.active[k] = true;
-            }
-            m.enforce_constraints(&mut st);
+            let mut st = pressed_face(&m);
             // node 1 held off its anchor, nodes 2 and 3 sliding in opposite directions
             for (k, offset, held) in [
                 (1, 1e-3, Branch::Stick),

@@ -195,11 +195,7 @@ fn friction_row(
         w_limit: own_dphi,
         per_phi_dd: 0.0,
     };
-    FrictionRow {
-        face: k,
-        held,
-        ..f.row(2 * n, coulomb, orowan)
-    }
+    f.row((2 * n, k), (coulomb, orowan), held)
 }
 
 /// The friction part of one active node's tangent row under one regime, per unit `φ` and
@@ -351,17 +347,18 @@ impl FrictionRow {
 }
 
 impl FrictionEval {
-    /// The node's friction row (slot `row`) from its rows under either regime.
+    /// The friction row of contact-face node `face` (slot `row`) from its rows under either
+    /// regime and, under exact stick, what holding it needs.
     pub(in crate::fe) fn row(
         &self,
-        row: usize,
-        coulomb: RegimeRow,
-        orowan: RegimeRow,
+        (row, face): (usize, usize),
+        (coulomb, orowan): (RegimeRow, RegimeRow),
+        held: Option<HeldRow>,
     ) -> FrictionRow {
         FrictionRow {
             row,
-            face: 0,
-            held: None,
+            face,
+            held,
             trial_slip: self.trial_slip,
             w: self.w,
             at: LawPiece {

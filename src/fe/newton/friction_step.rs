@@ -146,7 +146,8 @@ pub(crate) fn solve_newton_step(
 /// `assumed` (and `regime` its threshold's regime after the step): [`Branch::decide`] on the
 /// linearised friction force (a held node's reaction `−(c·g)/w` from its equilibrium row, a
 /// sliding node's `φ L`), its linearised slip from the anchor, `s + w δx`, and its linearised
-/// threshold. An open node keeps its piece (it has no friction).
+/// threshold. An open node (`N ≤ 0`) has no friction force and no threshold: it slides the way
+/// it moves.
 fn decide_exact(
     r: &FrictionRow,
     held: &HeldRow,

@@ -17,6 +17,7 @@ pub mod assembly;
 pub mod friction_rows;
 pub mod friction_step;
 
+use crate::fe::contact::friction::Branch;
 use crate::fe::error::StepFail;
 use crate::fe::model::{Model, State};
 use crate::fe::newton::assembly::{Assembly, Forces};
@@ -83,13 +84,13 @@ pub(crate) fn inf_norm(v: &[f64]) -> f64 {
 
 /// The largest entry of a state's residual, or its distance from the exact-stick friction
 /// law if that is larger ([`Forces::friction_complementarity`]).
-fn residual_norm(f: &Forces) -> f64 {
+fn convergence_norm(f: &Forces) -> f64 {
     inf_norm(&f.resid).max(f.friction_complementarity)
 }
 
 /// `st` with the exact-stick pieces of the law that its Newton step was solved with
 /// ([`solve_newton_step`]; none under the penalty law).
-fn holding(mut st: State, held: Option<&[(usize, crate::fe::contact::friction::Branch)]>) -> State {
+fn holding(mut st: State, held: Option<&[(usize, Branch)]>) -> State {
     for &(k, branch) in held.unwrap_or_default() {
         st.slip[k].held = branch;
     }
@@ -191,7 +192,7 @@ pub(crate) fn newton(
                 residual: last_res,
             });
         };
-        let res = residual_norm(&f);
+        let res = convergence_norm(&f);
         let prev = std::mem::replace(&mut last_res, res);
         let tol = residual_tolerance(model, opts, rtol, f.force_scale);
         if res <= tol || at_round_off_floor(last_step, res, prev, tol) {
@@ -311,7 +312,7 @@ pub(crate) fn newton_bordered(
             });
         };
         let (c, _) = model.edge_constraint(st, k);
-        let res = residual_norm(&f);
+        let res = convergence_norm(&f);
         let prev = std::mem::replace(&mut last_res, res);
         let gtol = if rtol > opts.newton.residual_rtol {
             LOOSE_GAP_FACTOR * gap_tol
