@@ -30,6 +30,7 @@ class Result:
     patches: npt.NDArray[np.int64]
     stick_fraction: npt.NDArray[np.float64]
     stick_half_width_over_lambda: npt.NDArray[np.float64]
+    friction_work_over_estar_lambda2: npt.NDArray[np.float64]
     branch: npt.NDArray[np.str_]
     error_estimate: npt.NDArray[np.float64]
     columns: Tuple[str, ...]

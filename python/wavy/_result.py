@@ -76,6 +76,10 @@ class Result:
     stick_half_width_over_lambda : numpy.ndarray of float
         Half-width over λ of the stick zone at the peak, in [0, 0.5] (0 when the peak
         slips, and without friction).
+    friction_work_over_estar_lambda2 : numpy.ndarray of float
+        The work of friction at the contact face along the path up to each point, over E* λ²
+        (per unit ridge length and wavelength; 0 without friction): on a closed loop, the
+        energy the loop dissipates.
     branch : numpy.ndarray of str
         "loading" or "unloading" (only "loading" without ``unload=True``).
     error_estimate : numpy.ndarray of float
@@ -104,9 +108,9 @@ class Result:
         (AR in [0.1, 0.3], τ_max in [0, 0.2] MPa): comparing this curve with :func:`wavy.wnl`
         compares it with an extrapolation.
     cycle_work_over_estar_lambda2, face_dissipation_over_estar_lambda2 : float or None
-        Only for ``solver="bem"`` with ``unload=True`` (else None): the loop's work ∮ p̄ dδ
-        and the work of friction at the face summed over the increments, over E* λ² (per unit
-        ridge length and wavelength).
+        Only with ``unload=True`` (else None): the loop's work ∮ p̄ dd (for ``solver="bem"``,
+        ∮ p̄ dδ) by the trapezoid rule on the converged points, and the work of friction at the
+        face at the last point, over E* λ² (per unit ridge length and wavelength).
 
     Examples
     --------

@@ -372,6 +372,7 @@ mod tests {
                     patches: 1,
                     stick_fraction: 0.0,
                     stick_half_width_over_lambda: 0.0,
+                    friction_work_over_estar_lambda2: 0.0,
                 }
             })
             .collect()

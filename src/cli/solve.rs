@@ -9,7 +9,7 @@ use wavy::defaults;
 use wavy::fe::{Kinematics, MeshLevel, SolveOptions};
 use wavy::profile::Profile;
 use wavy::runner::requests::request_error::RequestError;
-use wavy::runner::requests::solve_outcome::SolveRow;
+use wavy::runner::requests::solve_outcome::{SolveOutcome, SolveRow};
 use wavy::runner::requests::solve_request::{PreparedSolve, SolveRequest};
 use wavy::runner::requests::solver::Solver;
 
@@ -114,7 +114,9 @@ pub struct SolveArgs {
     pub until_contact_fraction: Option<f64>,
     /// Then unload back to zero load, the friction history carried through: the slab
     /// retracts through the loading steps' loads in reverse; a last column `branch`
-    /// (loading, unloading) says which branch each row is on.
+    /// (loading, unloading) says which branch each row is on, and the loop's work ∮ p̄ dd
+    /// and the face's work of friction (the column friction_work_over_estar_lambda2 at the
+    /// last row) go to stderr.
     #[arg(long, conflicts_with = "error_estimate")]
     pub unload: bool,
     /// Also write the deformed state of every converged point into this folder for ParaView:
@@ -231,7 +233,10 @@ pub fn solve(args: &SolveArgs, out: &mut impl Write) -> Result<ExitCode> {
         return Err(e.into());
     }
     match result {
-        Ok(_) => Ok(ExitCode::SUCCESS),
+        Ok(outcome) => {
+            tell_cycle_energy(&outcome, "d");
+            Ok(ExitCode::SUCCESS)
+        }
         Err(stopped @ RequestError::Stopped { .. }) => {
             eprintln!("error: {stopped}");
             Ok(ExitCode::from(1))
@@ -268,12 +273,18 @@ fn solve_bem(args: &SolveArgs, out: &mut impl Write) -> Result<ExitCode> {
     if let Some(e) = write_error {
         return Err(e.into());
     }
-    let outcome = result?;
+    tell_cycle_energy(&result?, "δ");
+    Ok(ExitCode::SUCCESS)
+}
+
+/// With `--unload`, the loop's energy both ways on stderr: the work of the load over the loop,
+/// `∮ p̄ d(travel)` (`travel` the load's displacement: `d` the slab's, `δ` the rigid approach),
+/// and the work of friction at the face.
+fn tell_cycle_energy(outcome: &SolveOutcome, travel: &str) {
     if let Some(energy) = outcome.cycle_energy {
         eprintln!(
-            "loop work ∮ p̄ dδ = {:e} E*λ², work of friction at the face = {:e} E*λ² (per unit ridge length and wavelength)",
+            "loop work ∮ p̄ d{travel} = {:e} E*λ², work of friction at the face = {:e} E*λ² (per unit ridge length and wavelength)",
             energy.cycle_work_over_estar_lambda2, energy.face_dissipation_over_estar_lambda2
         );
     }
-    Ok(ExitCode::SUCCESS)
 }

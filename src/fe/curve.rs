@@ -36,17 +36,24 @@ pub struct CurvePoint {
     /// when the peak slips, and without friction).
     #[serde(default)]
     pub stick_half_width_over_lambda: f64,
+    /// Work of friction at the contact face along the path up to this point, per unit ridge
+    /// length and per wavelength, over `E* λ²`: what the face has done against friction,
+    /// sliding along the indenter (0 without friction). On a closed loading–unloading loop,
+    /// where the elastic energy is back to zero, it is the loop's work
+    /// [`cycle_work_over_estar_lambda2`], the energy the cycle dissipates.
+    #[serde(default)]
+    pub friction_work_over_estar_lambda2: f64,
 }
 
 impl CurvePoint {
     /// Header of the CSV form of curve points ([`CurvePoint::csv_row`]).
-    pub const CSV_HEADER: &'static str = "a_over_lambda,p_over_estar,p_over_estar_reaction,slab_displacement_over_lambda,newton_iterations,active_nodes,contact_fraction,patches,stick_fraction,stick_half_width_over_lambda";
+    pub const CSV_HEADER: &'static str = "a_over_lambda,p_over_estar,p_over_estar_reaction,slab_displacement_over_lambda,newton_iterations,active_nodes,contact_fraction,patches,stick_fraction,stick_half_width_over_lambda,friction_work_over_estar_lambda2";
 
     /// One CSV row, numbers in shortest round-trip form (exact: [`FromStr`] reads it back
     /// bit for bit).
     pub fn csv_row(&self) -> String {
         format!(
-            "{},{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{}",
             self.a_over_lambda,
             self.p_over_estar,
             self.p_over_estar_reaction,
@@ -56,7 +63,8 @@ impl CurvePoint {
             self.contact_fraction,
             self.patches,
             self.stick_fraction,
-            self.stick_half_width_over_lambda
+            self.stick_half_width_over_lambda,
+            self.friction_work_over_estar_lambda2
         )
     }
 }
@@ -69,7 +77,7 @@ pub struct CurvePointParseError {
     pub row: String,
 }
 
-const CSV_FIELDS: usize = 10;
+const CSV_FIELDS: usize = 11;
 
 impl FromStr for CurvePoint {
     type Err = CurvePointParseError;
@@ -91,6 +99,7 @@ impl FromStr for CurvePoint {
             patches: f[7].parse().map_err(|_| bad())?,
             stick_fraction: f[8].parse().map_err(|_| bad())?,
             stick_half_width_over_lambda: f[9].parse().map_err(|_| bad())?,
+            friction_work_over_estar_lambda2: f[10].parse().map_err(|_| bad())?,
         })
     }
 }
@@ -234,6 +243,7 @@ pub(crate) fn awkward_point() -> CurvePoint {
         patches: 3,
         stick_fraction: 0.1 + 0.7,
         stick_half_width_over_lambda: 0.3 - 1e-16,
+        friction_work_over_estar_lambda2: 1.0 / 7e3,
     }
 }
 
@@ -265,6 +275,6 @@ mod tests {
         assert_eq!(p.csv_row().parse::<CurvePoint>(), Ok(p));
         assert_eq!(CurvePoint::CSV_HEADER.split(',').count(), CSV_FIELDS);
         assert!("1,2,3".parse::<CurvePoint>().is_err());
-        assert!("1,2,3,4,x,6,7,8,9,10".parse::<CurvePoint>().is_err());
+        assert!("1,2,3,4,x,6,7,8,9,10,11".parse::<CurvePoint>().is_err());
     }
 }

@@ -108,6 +108,16 @@ pub struct StepOptions {
     pub max_edge_iterations: usize,
     /// Use the tangent (Euler) predictor (else extrapolate the last increment).
     pub tangent_predictor: bool,
+    /// Unloading steps per loading step (≥ 1): the unloading branch retraces the loading
+    /// events' slab displacements, each interval in this many equal steps. The friction
+    /// history of a loop is integrated at first order in the step, so the dissipation converges
+    /// with it (docs/verification.md, "The energy audit").
+    #[serde(default = "one_substep")]
+    pub unloading_substeps: usize,
+}
+
+fn one_substep() -> usize {
+    1
 }
 
 impl Default for StepOptions {
@@ -122,6 +132,7 @@ impl Default for StepOptions {
             bordered_edge_solve: true,
             max_edge_iterations: 60,
             tangent_predictor: true,
+            unloading_substeps: one_substep(),
         }
     }
 }

@@ -122,7 +122,7 @@ pub fn press_and_shear(test: &ShearTest) -> Result<Vec<ShearPoint>, SolveError> 
         model.enforce_constraints(&mut st);
         equilibrate(&model, &mut asm, &mut st, &opts, Hold::NONE)
             .map_err(|f| f.into_error(step, st.d))?;
-        model.commit_slip(&mut st);
+        asm.commit_slip(&model, &mut st);
         if step <= n_press {
             continue;
         }

@@ -221,7 +221,7 @@ fn solve_with_unload_prints_both_branches() {
     let text = stdout(&o);
     let mut lines = text.lines();
     assert!(lines.next().unwrap().ends_with(
-        ",active_nodes,contact_fraction,patches,stick_fraction,stick_half_width_over_lambda,branch"
+        ",active_nodes,contact_fraction,patches,stick_fraction,stick_half_width_over_lambda,friction_work_over_estar_lambda2,branch"
     ));
     let rows: Vec<(f64, &str)> = lines
         .map(|l| {

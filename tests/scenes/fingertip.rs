@@ -122,6 +122,7 @@ fn fig5_fe_band_comes_from_the_fe_curves() {
                 patches: 1,
                 stick_fraction: 0.0,
                 stick_half_width_over_lambda: 0.0,
+                friction_work_over_estar_lambda2: 0.0,
             })
             .collect()
     };

@@ -133,6 +133,10 @@ pub struct SlipHistory {
     /// ([`crate::fe::newton::friction_step`]). Under the penalty law the piece follows from
     /// `e*` ([`Branch::of`]) and this field is not read.
     pub held: Branch,
+    /// Tangential force `T` at the last converged step (units `G λ` per unit depth; 0 on a
+    /// node that is free or has just touched): where the next step's work of friction starts
+    /// ([`FrictionLaw::commit`]).
+    pub force: f64,
 }
 
 impl SlipHistory {
@@ -144,6 +148,7 @@ impl SlipHistory {
             elastic: 0.0,
             anchor_x: x,
             held: Branch::Stick,
+            force: 0.0,
         }
     }
 
@@ -277,29 +282,38 @@ impl FrictionLaw {
         }
     }
 
-    /// History after a converged load step: `e_{n+1} = e_c φ` (`e*` clamped to
-    /// `[−e_c, e_c]`) and `S_{n+1} = S(x)` on an active node (`trial_slip = Some(e*)`);
-    /// no elastic slip on a free one. Under exact stick `e_{n+1} = 0`, and the node keeps
-    /// its held piece of the law (`held`) as the first guess of the next step.
+    /// History after a converged load step, and the work of friction in the step: on an
+    /// active node (`step = Some((e*, T))`, its trial elastic slip and tangential force at the
+    /// converged state) `e_{n+1} = e_c φ` (`e*` clamped to `[−e_c, e_c]`) and `S_{n+1} = S(x)`;
+    /// no elastic slip on a free one (`None`). Under exact stick `e_{n+1} = 0`, and the node
+    /// keeps its held piece of the law as the first guess of the next step.
+    ///
+    /// The work is what the face does against friction in the step, `−½ (T_n + T_{n+1}) ΔS`
+    /// (units `G λ²` per unit depth), `ΔS = e* − e_n` the arc the node slid along the indenter
+    /// and `T` the force opposing it: the trapezoidal rule, as the loop's work `∮ p̄ dd` is
+    /// taken (docs/verification.md, "The energy audit": it converges with the load step, at
+    /// first order where the slip reverses inside a step). Under the penalty law it includes
+    /// the work the elastic slip stores, which returns as the node unloads, and as it lets go:
+    /// a node that left contact in the step adds `½ T_n e_n` (≤ 0: its force and elastic slip
+    /// fall to zero), so that a loop that only ever stuck closes with no work at the face.
     pub(in crate::fe) fn commit(
         &self,
-        trial_slip: Option<f64>,
+        step: Option<(f64, f64)>,
         x: f64,
-        held: Branch,
-    ) -> SlipHistory {
-        let elastic = match trial_slip {
-            Some(e) => e.clamp(-self.slip_c, self.slip_c),
-            None => 0.0,
+        history: &SlipHistory,
+    ) -> (SlipHistory, f64) {
+        let Some((trial_slip, force)) = step else {
+            // let go: the force falls to zero and the elastic slip with it
+            return (SlipHistory::fresh(x), 0.5 * history.force * history.elastic);
         };
-        SlipHistory {
-            elastic,
-            held: if trial_slip.is_some() {
-                held
-            } else {
-                Branch::Stick
-            },
+        let work = -0.5 * (history.force + force) * (trial_slip - history.elastic);
+        let committed = SlipHistory {
+            elastic: trial_slip.clamp(-self.slip_c, self.slip_c),
+            held: history.held,
+            force,
             ..SlipHistory::fresh(x)
-        }
+        };
+        (committed, work)
     }
 }
 
@@ -450,15 +464,30 @@ mod tests {
             assert_eq!(mobilisation(sign * 2.0 * law.slip_c), (sign, 0.0));
             let (phi, dphi) = mobilisation(sign * 0.5 * law.slip_c);
             assert_eq!((phi, dphi), (sign * 0.5, w / law.slip_c));
-            let committed = law.commit(Some(sign * 3.0 * law.slip_c), 0.25, Branch::Stick);
+            // from e_n = e_c/2, slid 2.5 e_c along the indenter against a force growing from
+            // 0.4 to 0.6: the trapezoidal work ½ (0.4 + 0.6) 2.5 e_c
+            let before = SlipHistory {
+                elastic: sign * 0.5 * law.slip_c,
+                force: -sign * 0.4,
+                ..SlipHistory::fresh(0.2)
+            };
+            let step = Some((sign * 3.0 * law.slip_c, -sign * 0.6));
+            let (committed, work) = law.commit(step, 0.25, &before);
             assert_eq!(
-                (committed.elastic, committed.anchor_x),
-                (sign * law.slip_c, 0.25)
+                (committed.elastic, committed.anchor_x, committed.force),
+                (sign * law.slip_c, 0.25, -sign * 0.6)
             );
+            assert!((work - 0.5 * 2.5 * law.slip_c).abs() < 1e-15 * law.slip_c);
         }
+        // letting go returns the work the elastic slip stored
+        let before = SlipHistory {
+            elastic: 0.5 * law.slip_c,
+            force: -0.4,
+            ..SlipHistory::fresh(0.2)
+        };
         assert_eq!(
-            law.commit(None, 0.25, Branch::Stick),
-            SlipHistory::fresh(0.25)
+            law.commit(None, 0.25, &before),
+            (SlipHistory::fresh(0.25), -0.1 * law.slip_c)
         );
         assert_eq!(law.threshold(-1.0, 0.02), (Regime::Open, 0.0));
         assert_eq!(law.threshold(1e-3, 0.02), (Regime::Coulomb, 0.5 * 1e-3));

@@ -12,7 +12,7 @@ use crate::fe::newton::assembly::Assembly;
 use crate::fe::{CurvePoint, DeformedState, SolveOptions};
 
 /// The modelled width, half a wavelength (units of λ): the mean pressure is a force over it.
-const HALF_WAVELENGTH: f64 = 0.5;
+pub(crate) const HALF_WAVELENGTH: f64 = 0.5;
 
 /// `p̄/E*` from the contact tractions: the vertical components of the contact forces, which
 /// at equilibrium are the internal forces `∂Π/∂y` of the active nodes, over half a wavelength.
@@ -85,6 +85,7 @@ pub(crate) fn measure(
             patches: patches.len(),
             stick_fraction: stick.fraction,
             stick_half_width_over_lambda: stick.central_half_width,
+            friction_work_over_estar_lambda2: st.friction_work / HALF_WAVELENGTH / estar,
         },
         grad: f.grad,
         patches,

@@ -72,6 +72,10 @@ pub struct State {
     pub dx: f64,
     /// Friction history per contact-face node (empty without friction).
     pub slip: Vec<SlipHistory>,
+    /// Work of friction at the contact face along the path up to the last commit of the slip
+    /// history ([`Model::commit_slip`]): what the face has dissipated, over the modelled half
+    /// wavelength (units `G λ²` per unit depth; 0 without friction).
+    pub friction_work: f64,
 }
 
 /// The discrete model.
@@ -199,6 +203,7 @@ impl Model {
             d: 0.0,
             dx: 0.0,
             slip,
+            friction_work: 0.0,
         }
     }
 
@@ -369,13 +374,18 @@ impl Model {
     }
 
     /// Commit the friction history of a converged load step on every contact-face node:
-    /// `e_{n+1} = e_c φ`, `S_{n+1} = S(x)` on active nodes, reset on free ones (see
-    /// [`crate::fe::contact::friction`]). No-op without friction.
-    pub fn commit_slip(&self, st: &mut State) {
+    /// `e_{n+1} = e_c φ`, `S_{n+1} = S(x)` and the tangential force on active nodes, reset on
+    /// free ones, and add the step's work of friction to the state's
+    /// ([`crate::fe::contact::friction::FrictionLaw::commit`]). `grad` is the converged
+    /// state's `∂Π/∂x`, from which the forces follow. No-op without friction.
+    pub fn commit_slip(&self, st: &mut State, grad: &[f64]) {
         let Some(law) = self.friction else { return };
+        let tangential = self.tangential_forces(st, grad);
         for (k, &n) in self.mesh.bottom.iter().enumerate() {
-            let trial = st.active[k].then(|| self.trial_elastic_slip(st, k));
-            st.slip[k] = law.commit(trial, st.x[n][0], st.slip[k].held);
+            let step = st.active[k].then(|| (self.trial_elastic_slip(st, k), tangential[k]));
+            let (committed, work) = law.commit(step, st.x[n][0], &st.slip[k]);
+            st.slip[k] = committed;
+            st.friction_work += work;
         }
     }
 

@@ -112,6 +112,18 @@ impl Assembly {
         }
     }
 
+    /// Commit the friction history of the converged state `st` ([`Model::commit_slip`]) with
+    /// its forces (cached from the convergence check that accepted it). No-op without
+    /// friction.
+    pub(crate) fn commit_slip(&mut self, model: &Model, st: &mut State) {
+        if !model.is_potential() {
+            let f = self
+                .assemble(model, st, false)
+                .expect("a converged state is not inverted");
+            model.commit_slip(st, &f.grad);
+        }
+    }
+
     /// Assemble energy, gradient, reduced residual and (if `with_matrix`) the reduced
     /// tangent into [`Assembly::sys`]. `None` if any element is inverted. With friction,
     /// `energy` is the elastic energy only (the problem is no longer a minimisation).

@@ -307,7 +307,7 @@ impl EventSearch<'_> {
             if let Ok((mut st, it)) = sub {
                 spent += it;
                 if self.gap(model, &st) > self.gap_tol {
-                    model.commit_slip(&mut st);
+                    asm.commit_slip(model, &mut st);
                     base_prev = Some(std::mem::replace(&mut base, st));
                     tangent = tangent_at(model, asm, self.opts, &base);
                 }

@@ -164,7 +164,7 @@ fn load_past_full_contact(
         let d = path.cur.d + increment;
         let (mut st, iterations) = displacement_step(model, asm, opts, &path.cur, d, Hold::NONE)
             .map_err(|f| f.into_error(step, d))?;
-        model.commit_slip(&mut st);
+        asm.commit_slip(model, &mut st);
         let mut measured = measure_between_events(model, asm, &st, estar, opts);
         measured.point.newton_iterations = iterations;
         path.record(model, st, measured, (None, None), on_step)?;
@@ -503,7 +503,7 @@ impl Branch<'_> {
     /// Commits the slip of a settled event and measures its point (its Newton iterations those
     /// of the event).
     fn measure_event(&self, asm: &mut Assembly, event: &mut SettledEvent) -> Measured {
-        self.model.commit_slip(&mut event.state);
+        asm.commit_slip(self.model, &mut event.state);
         let mut measured = measure(
             self.model,
             asm,

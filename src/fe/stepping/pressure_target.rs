@@ -87,7 +87,7 @@ pub(crate) fn land_on_pressure(
         let p = mean_pressure_over_estar(model, &st, &f.grad, estar);
         if (p - target).abs() <= PRESSURE_TARGET_RTOL * target {
             let mut st = st;
-            model.commit_slip(&mut st);
+            asm.commit_slip(model, &mut st);
             let measured = measure_between_events(model, asm, &st, estar, opts);
             return Ok((st, measured, iters));
         }

@@ -6,7 +6,7 @@
 //! its observer with a `Converged` view of the state (references, nothing computed); only
 //! `StepStates` turns the view into a [`StepState`], so an ordinary solve pays nothing.
 
-use crate::fe::contact::measure::deformed_state;
+use crate::fe::contact::measure::{deformed_state, HALF_WAVELENGTH};
 use crate::fe::model::element::shoelace;
 use crate::fe::model::{Model, State};
 use crate::fe::{CurvePoint, DeformedState, LoadDirection};
@@ -44,6 +44,12 @@ pub struct StepState {
     /// slip of the regularised stick (at most `e_c`) plus the sliding; without friction the
     /// same measure, the sliding alone.
     pub face_slip_over_lambda: Vec<f64>,
+    /// The elastic energy stored in the layer, per unit ridge length and per wavelength, over
+    /// `E* λ²`. With the face's work of friction
+    /// ([`CurvePoint::friction_work_over_estar_lambda2`]) it accounts for the work of the load,
+    /// `∫ p̄ dd = elastic energy + friction work` along the path (docs/verification.md, "The
+    /// energy audit").
+    pub elastic_energy_over_estar_lambda2: f64,
 }
 
 /// The observer of a solve with states: keeps the slip of the contact face from one
@@ -88,6 +94,11 @@ impl<'a> StepStates<'a> {
             reference_nodes: model.mesh.nodes.clone(),
             element_dilatation: element_dilatation(model, state),
             face_slip_over_lambda: self.slip.clone(),
+            elastic_energy_over_estar_lambda2: model
+                .energy(state)
+                .expect("a converged state is not inverted")
+                / HALF_WAVELENGTH
+                / self.estar,
         };
         (self.on_step)(direction, point, &step)
     }

@@ -36,7 +36,8 @@ pub(crate) fn trace_cycle(
 /// The unloading branch from the loaded state of `path` back to zero load.
 ///
 /// Displacement-controlled: the slab retracts through the slab displacements of the loading
-/// events in reverse, then to `d = 0`, so that a frictionless (reversible) cycle revisits the loading
+/// events in reverse (each interval in [`crate::fe::StepOptions::unloading_substeps`] equal
+/// steps, [`retraced_displacements`]), then to `d = 0`, so that a frictionless (reversible) cycle revisits the loading
 /// states and the two branches can be compared point by point. Each step predicts along the
 /// load tangent, equilibrates (nodes whose normal force turns tensile are released, the
 /// return mapping carries the slip history, committed after every step;
@@ -60,11 +61,7 @@ fn unload(
     path: &mut LoadPath,
     on_step: &mut dyn FnMut(&CurvePoint, Converged<'_>) -> ControlFlow<()>,
 ) -> Result<Vec<CurvePoint>, Box<CurveFailure>> {
-    let event_displacements: Vec<f64> = path
-        .points
-        .iter()
-        .map(|p| p.slab_displacement_over_lambda)
-        .collect();
+    let event_displacements = retraced_displacements(path, opts.steps.unloading_substeps);
     let d_max = path.cur.d;
     let retract_increment = event_displacements.first().copied().unwrap_or(d_max);
     // targets as a stack, the next one last: scheduled displacements (committed and recorded) and
@@ -121,7 +118,7 @@ fn unload(
         // exactly the target, so that a reversible cycle revisits the loading displacements
         match displacement_step(model, asm, opts, &base, target, Hold::NONE) {
             Ok((mut st, iters)) if scheduled => {
-                model.commit_slip(&mut st);
+                asm.commit_slip(model, &mut st);
                 let Measured {
                     mut point, grad, ..
                 } = measure_between_events(model, asm, &st, estar, opts);
@@ -167,6 +164,21 @@ fn unload(
         }
     }
     Ok(points)
+}
+
+/// The slab displacements the unloading branch retraces, in loading order: those of the loading
+/// points exactly (so that a reversible cycle revisits the loading states), each interval from
+/// the one before (from `d = 0` for the first) split into `substeps` equal steps.
+fn retraced_displacements(path: &LoadPath, substeps: usize) -> Vec<f64> {
+    let loading = path.points.iter().map(|p| p.slab_displacement_over_lambda);
+    let mut from = 0.0;
+    let mut retraced = Vec::with_capacity(path.points.len() * substeps);
+    for to in loading {
+        let between = (1..substeps).map(|j| from + (to - from) * j as f64 / substeps as f64);
+        retraced.extend(between.chain([to]));
+        from = to;
+    }
+    retraced
 }
 
 /// The cuts of the unloading steps: at most `max_step_cuts` in a row, and never to an increment

@@ -153,14 +153,16 @@ impl PreparedBemSolve {
             tol: TOLERANCE,
         };
         let mut rows: Vec<SolveRow> = vec![];
+        let mut friction_work = 0.0;
         let solved = frictional_curve::solve_curve(&problem, &self.curve, &mut |unloading, inc| {
             let branch = if unloading {
                 LoadDirection::Unloading
             } else {
                 LoadDirection::Loading
             };
+            friction_work += inc.dissipation_over_estar_lambda2;
             let row = SolveRow {
-                point: curve_point(inc, self.grid_points),
+                point: curve_point(inc, self.grid_points, friction_work),
                 branch,
                 error_estimate: None,
             };
@@ -198,8 +200,9 @@ impl PreparedBemSolve {
 
 /// An increment as a curve point: the rigid approach δ in the slab displacement's column, the
 /// alternation's passes in the Newton iterations' column, the contact grid points of the half
-/// period `[0, ½]` in the active nodes' column.
-fn curve_point(inc: &Increment, grid_points: usize) -> CurvePoint {
+/// period `[0, ½]` in the active nodes' column; `friction_work` is the face's work of friction
+/// up to and with this increment (over E* λ²).
+fn curve_point(inc: &Increment, grid_points: usize, friction_work: f64) -> CurvePoint {
     let half = grid_points / 2;
     CurvePoint {
         a_over_lambda: frictional_curve::outermost_edge(inc),
@@ -215,5 +218,6 @@ fn curve_point(inc: &Increment, grid_points: usize) -> CurvePoint {
         patches: inc.patches.len(),
         stick_fraction: inc.stick_fraction,
         stick_half_width_over_lambda: inc.stick_half_width_over_lambda,
+        friction_work_over_estar_lambda2: friction_work,
     }
 }

@@ -57,7 +57,7 @@ enum PointValue {
 
 /// The curve point's columns, in the order of [`CurvePoint::CSV_HEADER`] (a test keeps the two
 /// equal).
-const POINT_COLUMNS: [(&str, PointValue); 10] = [
+const POINT_COLUMNS: [(&str, PointValue); 11] = [
     ("a_over_lambda", PointValue::Real(|p| p.a_over_lambda)),
     ("p_over_estar", PointValue::Real(|p| p.p_over_estar)),
     (
@@ -79,6 +79,10 @@ const POINT_COLUMNS: [(&str, PointValue); 10] = [
     (
         "stick_half_width_over_lambda",
         PointValue::Real(|p| p.stick_half_width_over_lambda),
+    ),
+    (
+        "friction_work_over_estar_lambda2",
+        PointValue::Real(|p| p.friction_work_over_estar_lambda2),
     ),
 ];
 
@@ -110,6 +114,33 @@ pub struct CycleEnergy {
     pub cycle_work_over_estar_lambda2: f64,
     /// The work of friction at the face, summed over the increments.
     pub face_dissipation_over_estar_lambda2: f64,
+}
+
+impl CycleEnergy {
+    /// The energy of a finite-element loop from its rows, loading then unloading: `∮ p̄ dd`
+    /// by the trapezoid rule on the converged points
+    /// ([`crate::fe::cycle_work_over_estar_lambda2`]), and the face's work of friction at the
+    /// last point.
+    pub fn of_finite_element_loop(rows: &[SolveRow]) -> Self {
+        let branch = |b: LoadDirection| -> Vec<CurvePoint> {
+            rows.iter()
+                .filter(|r| r.branch == b)
+                .map(|r| r.point)
+                .collect()
+        };
+        let (loading, unloading) = (
+            branch(LoadDirection::Loading),
+            branch(LoadDirection::Unloading),
+        );
+        Self {
+            cycle_work_over_estar_lambda2: crate::fe::cycle_work_over_estar_lambda2(
+                &loading, &unloading,
+            ),
+            face_dissipation_over_estar_lambda2: rows
+                .last()
+                .map_or(0.0, |r| r.point.friction_work_over_estar_lambda2),
+        }
+    }
 }
 
 impl SolveOutcome {

@@ -17,7 +17,7 @@ use crate::runner::requests::input_checks::{
 };
 use crate::runner::requests::profile_mesh;
 use crate::runner::requests::request_error::RequestError;
-use crate::runner::requests::solve_outcome::{ExtraColumn, SolveOutcome, SolveRow};
+use crate::runner::requests::solve_outcome::{CycleEnergy, ExtraColumn, SolveOutcome, SolveRow};
 use crate::runner::requests::solver::Solver;
 use crate::runner::sweep::fe_cases::{FeCase, FePhysics};
 use crate::vtk::{write_incomplete_series, write_series, VtkStep};
@@ -460,7 +460,12 @@ impl PreparedSolve {
                     write_series(dir, &vtk_steps)
                         .map_err(|e| RequestError::Failed(e.to_string()))?;
                 }
-                Ok(self.outcome(rows, curve.work))
+                let unload = self.request.unload;
+                let energy = unload.then(|| CycleEnergy::of_finite_element_loop(&rows));
+                Ok(SolveOutcome {
+                    cycle_energy: energy,
+                    ..self.outcome(rows, curve.work)
+                })
             }
             Err(failure) if stopped_by_caller(&failure.error) => Err(RequestError::Interrupted {
                 partial: Box::new(self.outcome(rows, SolveWork::default())),

@@ -166,6 +166,9 @@ impl Scene for HysteresisScene {
 struct Dissipation {
     loading_work: f64,
     work: f64,
+    /// The work of friction at the face over the loop ([`CurvePoint::friction_work_over_estar_lambda2`]
+    /// at its last point): the dissipation measured at the face, the energy audit of `work`.
+    face_work: f64,
     /// W on the next coarser mesh, and the Richardson extrapolation of the two.
     coarse: Option<(f64, f64)>,
 }
@@ -262,9 +265,14 @@ fn dissipation(
         let wc = cycle_work_over_estar_lambda2(&co.points, &co.unloading);
         Some((wc, richardson(wc, w, ratio, order)))
     });
+    let face_work = o
+        .unloading
+        .last()
+        .map_or(0.0, |p| p.friction_work_over_estar_lambda2);
     Ok(Dissipation {
         loading_work: w_load,
         work: w,
+        face_work,
         coarse,
     })
 }
@@ -290,6 +298,7 @@ impl Tables {
             "loading_work_over_estar_lambda2",
             "dissipation_over_estar_lambda2",
             "dissipated_fraction",
+            "face_friction_work_over_estar_lambda2",
         ];
         if with_estimates {
             dissipation_header.extend([
@@ -352,6 +361,7 @@ impl Tables {
         match d {
             Err(status) => {
                 row.extend(empty());
+                row.push(Cell::Empty);
                 if self.with_estimates {
                     row.extend(empty());
                 }
@@ -360,6 +370,7 @@ impl Tables {
             Ok(d) => {
                 let (w_load, w) = (d.loading_work, d.work);
                 row.extend([w_load.into(), w.into(), (w / w_load).into()]);
+                row.push(d.face_work.into());
                 if self.with_estimates {
                     match d.coarse {
                         Some((wc, limit)) => {
