@@ -18,7 +18,8 @@ pub struct CurvePoint {
     pub p_over_estar_reaction: f64,
     /// Slab displacement `d/λ`.
     pub slab_displacement_over_lambda: f64,
-    /// Newton iterations spent on this step (all active-set passes).
+    /// Newton iterations spent on this step (all active-set passes; on unloading also those of
+    /// the intermediate steps and failed tries before it).
     pub newton_iterations: usize,
     /// Contact-face nodes in contact.
     pub active_nodes: usize,

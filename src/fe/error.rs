@@ -214,6 +214,17 @@ fn pressure_limit_advice(a_over_lambda: f64) -> &'static str {
 }
 
 impl StepFail {
+    /// The Newton iterations the failed solve spent in the pass that failed (those of earlier
+    /// active-set passes are not kept: a lower bound of what the try cost).
+    pub(crate) fn iterations(&self) -> usize {
+        match self {
+            StepFail::Diverged { iteration, .. }
+            | StepFail::Inverted { iteration, .. }
+            | StepFail::Linear { iteration, .. } => *iteration,
+            StepFail::Cycling { iterations } => *iterations,
+        }
+    }
+
     pub(crate) fn into_error(self, step: usize, d: f64) -> SolveError {
         match self {
             StepFail::Diverged {

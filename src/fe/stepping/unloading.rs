@@ -47,7 +47,9 @@ pub(crate) fn trace_cycle(
 /// in a row and never below the first event's increment cut as often, [`StepCuts`]) that serve as initial guesses only: the slip history is committed,
 /// and points are recorded, at the scheduled displacements alone, so that the discrete load
 /// path, and with it the dissipated energy, does not depend on where Newton needed help
-/// (where the cuts fall moves with the round-off of the linear solves). When contact remains
+/// (where the cuts fall moves with the round-off of the linear solves); a point's Newton
+/// iterations count those of the intermediate steps and failed tries that led to it (of a failed
+/// try, its last active-set pass: [`crate::fe::error::StepFail::iterations`]). When contact remains
 /// at `d = 0` with a positive mean pressure (slip locked in by friction; "positive" meaning
 /// above `residual_rtol` times the largest mean pressure of the cycle, the round-off of the
 /// summed contact forces), the slab goes on retracting by the first event's increment until the last node
@@ -88,6 +90,8 @@ fn unload(
     let p_max = cur_p;
     // where the next step starts: the last committed state, or an intermediate one past it
     let mut base = path.cur.clone();
+    // Newton iterations of the intermediate steps and failed tries since the last point
+    let mut spent = 0;
     loop {
         let Some(&(target, scheduled)) = targets.last() else {
             // at d = 0 or beyond: done when no contact force is left
@@ -122,7 +126,8 @@ fn unload(
                 let Measured {
                     mut point, grad, ..
                 } = measure_between_events(model, asm, &st, estar, opts);
-                point.newton_iterations = iters;
+                point.newton_iterations = spent + iters;
+                spent = 0;
                 let at = Converged {
                     model,
                     state: &st,
@@ -144,13 +149,17 @@ fn unload(
                 targets.pop();
                 cuts.reset();
             }
-            Ok((st, _)) => {
+            Ok((st, iters)) => {
+                spent += iters;
                 base = st;
                 targets.pop();
                 cuts.reset();
             }
             Err(f) => match cuts.cut(base.d, target) {
-                Some(intermediate) => targets.push((intermediate, false)),
+                Some(intermediate) => {
+                    spent += f.iterations();
+                    targets.push((intermediate, false));
+                }
                 None => {
                     let error = SolveError::UnloadingStalled {
                         slab_displacement_over_lambda: base.d,
