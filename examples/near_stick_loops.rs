@@ -20,8 +20,8 @@ use rayon::prelude::*;
 use std::ops::ControlFlow;
 use wavy::accuracy::richardson;
 use wavy::fe::{
-    cycle_work_over_estar_lambda2, solve_cycle, Interface, Kinematics, LayerProblem, MeshLevel,
-    SolveOptions, StepOptions,
+    cycle_friction_work_over_estar_lambda2, cycle_work_over_estar_lambda2, solve_cycle, Interface,
+    Kinematics, LayerProblem, MeshLevel, SolveOptions, StepOptions,
 };
 
 /// The loop's work and the face's work of friction at its end, over E* λ².
@@ -68,10 +68,7 @@ fn near_stick_loop(
         });
     LoopEnergy {
         work: cycle_work_over_estar_lambda2(&curve.points, &curve.unloading),
-        face: curve
-            .unloading
-            .last()
-            .map_or(0.0, |p| p.friction_work_over_estar_lambda2),
+        face: cycle_friction_work_over_estar_lambda2(&curve.unloading),
     }
 }
 

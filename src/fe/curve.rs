@@ -230,6 +230,16 @@ pub fn cycle_work_over_estar_lambda2(loading: &[CurvePoint], unloading: &[CurveP
     w_load + w_unload
 }
 
+/// The work of friction at the face over a loading–unloading cycle, over `E* λ²`: the face's
+/// work at the cycle's last point ([`CurvePoint::friction_work_over_estar_lambda2`]), 0 for a
+/// cycle with no unloading point. Beside [`cycle_work_over_estar_lambda2`], the energy audit
+/// of the cycle.
+pub fn cycle_friction_work_over_estar_lambda2(unloading: &[CurvePoint]) -> f64 {
+    unloading
+        .last()
+        .map_or(0.0, |p| p.friction_work_over_estar_lambda2)
+}
+
 /// A point whose numbers need every digit of the round-trip form (test fixture).
 #[cfg(test)]
 pub(crate) fn awkward_point() -> CurvePoint {

@@ -65,8 +65,8 @@ pub use convergence::{
     ConvergenceTable,
 };
 pub use curve::{
-    cycle_work_over_estar_lambda2, Curve, CurvePoint, CurvePointParseError, DeformedState,
-    LoadDirection, SolveWork,
+    cycle_friction_work_over_estar_lambda2, cycle_work_over_estar_lambda2, Curve, CurvePoint,
+    CurvePointParseError, DeformedState, LoadDirection, SolveWork,
 };
 pub use error::{CurveFailure, SolveError};
 pub use model::material::{estar_over_g, poisson_ratio};

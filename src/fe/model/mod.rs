@@ -73,8 +73,9 @@ pub struct State {
     /// Friction history per contact-face node (empty without friction).
     pub slip: Vec<SlipHistory>,
     /// Work of friction at the contact face along the path up to the last commit of the slip
-    /// history ([`Model::commit_slip`]): what the face has dissipated, over the modelled half
-    /// wavelength (units `G λ²` per unit depth; 0 without friction).
+    /// history ([`Model::commit_slip`]), over the modelled half wavelength (units `G λ²` per
+    /// unit depth; 0 without friction): what the face has dissipated, and under the penalty law
+    /// the work its elastic slips hold.
     pub friction_work: f64,
 }
 

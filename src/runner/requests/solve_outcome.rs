@@ -136,9 +136,9 @@ impl CycleEnergy {
             cycle_work_over_estar_lambda2: crate::fe::cycle_work_over_estar_lambda2(
                 &loading, &unloading,
             ),
-            face_dissipation_over_estar_lambda2: rows
-                .last()
-                .map_or(0.0, |r| r.point.friction_work_over_estar_lambda2),
+            face_dissipation_over_estar_lambda2: crate::fe::cycle_friction_work_over_estar_lambda2(
+                &unloading,
+            ),
         }
     }
 }

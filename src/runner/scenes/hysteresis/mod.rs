@@ -265,10 +265,7 @@ fn dissipation(
         let wc = cycle_work_over_estar_lambda2(&co.points, &co.unloading);
         Some((wc, richardson(wc, w, ratio, order)))
     });
-    let face_work = o
-        .unloading
-        .last()
-        .map_or(0.0, |p| p.friction_work_over_estar_lambda2);
+    let face_work = crate::fe::cycle_friction_work_over_estar_lambda2(&o.unloading);
     Ok(Dissipation {
         loading_work: w_load,
         work: w,
