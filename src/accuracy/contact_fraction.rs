@@ -56,6 +56,57 @@ pub fn contact_fraction_error_estimate(
     Some(rms / (1.0 + ratio.powf(2.0 * order)).sqrt())
 }
 
+/// A model's contact fraction against an FE curve: relative errors `model / FE − 1` at the FE
+/// points with a contact fraction of at least `from` where the model has an answer.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModelErrors {
+    /// FE points compared.
+    pub points: usize,
+    /// Largest |relative error|.
+    pub max_rel: f64,
+    /// Root mean square of the relative errors.
+    pub rms_rel: f64,
+    /// Largest |model − FE| of the contact fraction.
+    pub max_abs: f64,
+}
+
+impl ModelErrors {
+    /// Compares `model(p̄/E*)` (`None` where the model has no answer, e.g. beyond its full
+    /// contact) with the curve `fe` at its points of contact fraction `≥ from`; `None` when no
+    /// point qualifies. The model's errors pass through.
+    pub fn against<E>(
+        fe: &[CurvePoint],
+        from: f64,
+        mut model: impl FnMut(f64) -> Result<Option<f64>, E>,
+    ) -> Result<Option<ModelErrors>, E> {
+        let mut pairs = vec![];
+        for p in fe.iter().filter(|p| p.contact_fraction >= from) {
+            if let Some(c) = model(p.p_over_estar)? {
+                pairs.push((c, p.contact_fraction));
+            }
+        }
+        Ok(Self::of_pairs(pairs))
+    }
+
+    /// The errors of `(model, FE)` contact fraction pairs; `None` for none.
+    pub fn of_pairs(pairs: impl IntoIterator<Item = (f64, f64)>) -> Option<ModelErrors> {
+        let (mut points, mut max_rel, mut sum_sq, mut max_abs) = (0usize, 0.0_f64, 0.0, 0.0_f64);
+        for (model, fe) in pairs {
+            let rel = model / fe - 1.0;
+            points += 1;
+            max_rel = max_rel.max(rel.abs());
+            sum_sq += rel * rel;
+            max_abs = max_abs.max((model - fe).abs());
+        }
+        (points > 0).then(|| ModelErrors {
+            points,
+            max_rel,
+            rms_rel: (sum_sq / points as f64).sqrt(),
+            max_abs,
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -100,5 +151,31 @@ mod tests {
             contact_fraction_error_estimate(&fine, &coarse, 2.0, 1.0, 0.6),
             None
         );
+    }
+
+    /// A model 10 % high at one point and 10 % low at the other, silent at the third.
+    #[test]
+    fn model_errors_over_the_points_it_answers() {
+        let fe = [
+            point(0.01, 0.02),
+            point(0.1, 0.2),
+            point(0.3, 0.5),
+            point(0.4, 0.6),
+        ];
+        let model = |p: f64| -> Result<Option<f64>, ()> {
+            Ok(match p {
+                p if p < 0.2 => Some(0.22),
+                p if p < 0.35 => Some(0.45),
+                _ => None,
+            })
+        };
+        let e = ModelErrors::against(&fe, 0.05, model).unwrap().unwrap();
+        assert_eq!(e.points, 2);
+        assert!(
+            (e.max_rel - 0.1).abs() < 1e-12 && (e.rms_rel - 0.1).abs() < 1e-12,
+            "{e:?}"
+        );
+        assert!((e.max_abs - 0.05).abs() < 1e-12, "{e:?}");
+        assert_eq!(ModelErrors::against(&fe, 0.7, model).unwrap(), None);
     }
 }

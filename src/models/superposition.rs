@@ -109,6 +109,21 @@ pub enum SuperpositionError {
     },
 }
 
+impl SuperpositionError {
+    /// Whether the mean pressure lies at or beyond the big wave's full contact, where the model
+    /// has no answer (the big wave flat against the solid), rather than the model failing.
+    pub fn is_beyond_big_full_contact(&self) -> bool {
+        matches!(
+            self,
+            SuperpositionError::BigFullContact { .. }
+                | SuperpositionError::BigInverse {
+                    source: InverseError::AboveFullContact { .. },
+                    ..
+                }
+        )
+    }
+}
+
 /// How a small wave touches.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum CrestState {

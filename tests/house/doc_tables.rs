@@ -129,6 +129,7 @@ const MUST_BE_CHECKED: &[&str] = &[
     "figures/speed_accuracy_trade.csv",
     "figures/two_scale_errors.csv",
     "figures/two_scale_separation_errors.csv",
+    "figures/many_scale_errors.csv",
     "experiments/data/robustness_grid.csv",
 ];
 

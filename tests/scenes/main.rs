@@ -1,5 +1,5 @@
-//! Every scene through the runner: the snapshots of their outputs, the test-size speed–accuracy and
-//! two-scale scenes, the fingertip scenes, `wavy check`, random specs, and `wavy diff`'s review.
+//! Every scene through the runner: the snapshots of their outputs, the test-size speed–accuracy,
+//! two-scale and many-scale scenes, the fingertip scenes, `wavy check`, random specs, and `wavy diff`'s review.
 //!
 //! One test binary per concern, each module one file as it was before the grouping (fewer binaries
 //! link faster, and the tests of a binary share its threads).
@@ -7,6 +7,7 @@
 mod check;
 mod fingertip;
 mod fuzz_specs;
+mod many_scale;
 mod review;
 mod snapshots;
 mod speed_accuracy;

@@ -4,7 +4,8 @@
 //! cache (a temporary folder: no test reads or writes the developer's `.wavy-cache/`), so the
 //! snapshots pin the solver itself, not a cache. The specs in [`HEAVY_SPECS`] take
 //! tens of minutes (meshes up to 144 elements along the face): make test pins a test-size run of
-//! each (`tests/scenes/speed_accuracy.rs`, `tests/scenes/two_scale.rs`, [`test_size_hysteresis`]), and CI's
+//! each (`tests/scenes/speed_accuracy.rs`, `tests/scenes/two_scale.rs`, `tests/scenes/many_scale.rs`,
+//! [`test_size_hysteresis`]), and CI's
 //! `make stale` recomputes them in full and compares
 //! with the committed figures. A snapshot only says "did our
 //! output change?"; review changes with `cargo insta review`.
@@ -13,8 +14,9 @@ use crate::in_snapshot_folder;
 use wavy::runner::{run_spec_file, RunOptions};
 
 /// Specs too heavy for make test (see the module docs).
-const HEAVY_SPECS: [&str; 4] = [
+const HEAVY_SPECS: [&str; 5] = [
     "speed_accuracy.toml",
+    "many_scale.toml",
     "two_scale.toml",
     "two_scale_separation.toml",
     "hysteresis.toml",

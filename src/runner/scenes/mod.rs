@@ -16,6 +16,8 @@ pub mod fingertip_area;
 pub mod fingertip_fe;
 pub mod fingertip_ridges;
 pub mod hysteresis;
+pub mod many_scale;
+pub(crate) mod profile_comparison;
 pub(crate) mod scene_output;
 pub mod speed_accuracy;
 pub mod table1_refit;
@@ -114,6 +116,7 @@ scene_registry! {
     speed_accuracy::SpeedAccuracyScene,
     hysteresis::HysteresisScene,
     two_scale::TwoScaleScene,
+    many_scale::ManyScaleScene,
 }
 
 impl Spec {

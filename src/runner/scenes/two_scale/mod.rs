@@ -12,10 +12,11 @@ mod panels;
 
 use panels::{contact_map, profile_panel};
 
-use crate::fe::{Grading, MeshLevel, SolveOptions};
-use crate::models::superposition::{superposed_contact, SuperpositionError};
+use crate::fe::SolveOptions;
+use crate::models::superposition::superposed_contact;
 use crate::models::{a_over_lambda_at, CoefficientSet, InverseError, ModelKind, ModelLaw, Reading};
 use crate::profile::Profile;
+use crate::runner::scenes::profile_comparison::ComparisonSettings;
 use crate::runner::scenes::scene_output::{Layout, Remarks};
 use crate::runner::scenes::{Scene, SceneContext, SceneResult};
 use crate::runner::sweep::fe_cases::{FeCase, FePhysics, SolvedCases};
@@ -113,58 +114,41 @@ impl Model {
     }
 }
 
-/// FE curve colours per τ_max (black, red, …).
-const FE_COLORS: [RGBColor; 3] = [
-    RGBColor(0, 0, 0),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-];
-
 impl TwoScaleScene {
     fn profile(&self, i: usize) -> Profile {
         Profile::from_pairs(&self.profiles[i]).expect("validated")
     }
 
-    /// The face elements of profile `i`'s FE case: `mesh`, or more where its finer harmonic
-    /// needs `elements_per_small_wavelength` (two wavelengths λ/n per λ, the face spans λ/2).
+    /// The face elements of profile `i`'s FE case ([`ComparisonSettings::mesh_for`]).
     fn mesh_of(&self, i: usize) -> usize {
-        let order = self
-            .profile(i)
-            .finer
-            .iter()
-            .map(|h| h.order)
-            .max()
-            .unwrap_or(1) as usize;
-        self.mesh
-            .max((self.elements_per_small_wavelength * order).div_ceil(2))
+        self.settings().mesh_for(self.profile(i).max_order())
     }
 
-    /// The face elements of profile `i`'s error-estimate case: `error_estimate_mesh`, grown as
-    /// [`Self::mesh_of`] grows `mesh`.
+    /// The face elements of profile `i`'s error-estimate case.
     fn estimate_mesh_of(&self, i: usize) -> usize {
-        let grown = self.mesh_of(i) as f64 / self.mesh as f64;
-        (self.error_estimate_mesh as f64 * grown).round() as usize
+        self.settings()
+            .estimate_mesh_for(self.profile(i).max_order())
     }
 
-    /// The mesh of `nx` face elements and `depth_ratio` as many across the thickness.
-    fn mesh_level(&self, nx: usize) -> MeshLevel {
-        MeshLevel::Elements {
-            nx,
-            ny: ((nx as f64 * self.depth_ratio).round() as usize).max(2),
+    /// The FE settings the comparison scenes share.
+    fn settings(&self) -> ComparisonSettings<'static> {
+        ComparisonSettings {
+            table: "two_scale",
+            mesh: self.mesh,
+            elements_per_finest_wavelength: self.elements_per_small_wavelength,
+            error_estimate_mesh: self.error_estimate_mesh,
+            depth_ratio: self.depth_ratio,
+            peak_ratio: self.peak_ratio,
+            until_contact_fraction: self.until_contact_fraction,
+            model_points: self.model_points,
+            fe_error_order: self.fe_error_order,
+            error_from_contact_fraction: self.error_from_contact_fraction,
         }
     }
 
     /// The solve options of profile `i`.
     fn options(&self, i: usize) -> SolveOptions {
-        SolveOptions {
-            mesh: self.mesh_level(self.mesh_of(i)),
-            grading: Grading {
-                peak_ratio: self.peak_ratio,
-                ..Grading::default()
-            },
-            until_contact_fraction: Some(self.until_contact_fraction),
-            ..SolveOptions::default()
-        }
+        self.settings().options(self.mesh_of(i))
     }
 
     /// The FE cases ([`Self::cases`]) and, after them, each on `error_estimate_mesh`, for the FE
@@ -183,7 +167,7 @@ impl TwoScaleScene {
     /// `case`, of profile `i`, on its error-estimate mesh ([`Self::estimate_mesh_of`]).
     fn coarse_case(&self, i: usize, case: &FeCase) -> FeCase {
         let mut coarse = case.clone();
-        coarse.options.mesh = self.mesh_level(self.estimate_mesh_of(i));
+        coarse.options.mesh = self.settings().options(self.estimate_mesh_of(i)).mesh;
         coarse
     }
 
@@ -239,11 +223,7 @@ impl TwoScaleScene {
             big, small, fine.order, p,
         ) {
             Ok(c) => Ok(Some(c.contact_fraction)),
-            Err(SuperpositionError::BigFullContact { .. })
-            | Err(SuperpositionError::BigInverse {
-                source: InverseError::AboveFullContact { .. },
-                ..
-            }) => Ok(None),
+            Err(e) if e.is_beyond_big_full_contact() => Ok(None),
             Err(e) => Err(e.into()),
         };
         match model {
@@ -274,15 +254,7 @@ impl Scene for TwoScaleScene {
     fn validate(&self, v: &Validator) -> Result<(), SpecError> {
         v.non_empty("two_scale.profiles", self.profiles.len())?;
         v.non_empty("two_scale.tau_max_mpa", self.tau_max_mpa.len())?;
-        let ratio = self.depth_ratio;
-        if !(ratio.is_finite() && ratio > 0.0 && ratio <= 4.0) {
-            return Err(v.invalid(
-                "two_scale.depth_ratio",
-                None,
-                ratio.to_string(),
-                "(0, 4]".into(),
-            ));
-        }
+        self.settings().validate(v)?;
         let field = "two_scale.profiles";
         for (i, p) in self.profiles.iter().enumerate() {
             let text = format!("{p:?}");
@@ -300,48 +272,11 @@ impl Scene for TwoScaleScene {
                 finer_harmonics: profile.finer,
                 ..crate::defaults::layer_problem(profile.aspect_ratio)
             };
-            let coarse = SolveOptions {
-                mesh: self.mesh_level(self.estimate_mesh_of(i)),
-                ..self.options(i)
-            };
+            let coarse = self.settings().options(self.estimate_mesh_of(i));
             for opts in [self.options(i), coarse] {
                 crate::fe::validate(&problem, &opts)
                     .map_err(|e| v.invalid(field, None, text.clone(), e.to_string()))?;
             }
-        }
-        let c = self.until_contact_fraction;
-        if !(c > 0.0 && c < 1.0) {
-            return Err(v.invalid(
-                "two_scale.until_contact_fraction",
-                None,
-                c.to_string(),
-                "(0, 1)".into(),
-            ));
-        }
-        let order = self.fe_error_order;
-        if !(order.is_finite() && order > 0.0) {
-            return Err(v.invalid(
-                "two_scale.fe_error_order",
-                None,
-                order.to_string(),
-                "> 0".into(),
-            ));
-        }
-        if self.error_estimate_mesh >= self.mesh {
-            return Err(v.invalid(
-                "two_scale.error_estimate_mesh",
-                None,
-                self.error_estimate_mesh.to_string(),
-                format!("fewer elements than mesh = {}", self.mesh),
-            ));
-        }
-        if self.model_points < 2 {
-            return Err(v.invalid(
-                "two_scale.model_points",
-                None,
-                self.model_points.to_string(),
-                ">= 2".into(),
-            ));
         }
         if let Some(&i) = self
             .contact_maps

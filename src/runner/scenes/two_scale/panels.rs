@@ -1,11 +1,12 @@
 //! The two-scale scene's panels and tables: per profile its FE curves, the models' curves and
 //! their errors against the FE (with the FE's own error estimate), and the contact maps.
 
-use super::{Model, TwoScaleScene, FE_COLORS};
-use crate::accuracy::contact_fraction::contact_fraction_error_estimate;
+use super::{Model, TwoScaleScene};
+use crate::accuracy::contact_fraction::ModelErrors;
 use crate::numfmt::sig_digits;
 use crate::plot::{padded_range, LegendPosition, Panel, Series};
 use crate::profile::Profile;
+use crate::runner::scenes::profile_comparison::fe_series;
 use crate::runner::scenes::scene_output::Remarks;
 use crate::runner::sweep::fe_cases::{FeCase, FeOutcome, SolvedCases};
 use crate::table::{Cell, Table};
@@ -40,21 +41,12 @@ pub(super) fn profile_panel(
                 Cell::Num(p.patches as f64),
             ]);
         }
-        series.push(Series::line(
-            Some(format!("FE, τ_max = {tau} MPa")),
-            FE_COLORS[t % FE_COLORS.len()],
-            2,
-            fe.points
-                .iter()
-                .map(|p| (p.p_over_estar, p.contact_fraction))
-                .collect(),
-        ));
+        series.push(fe_series(t, tau, &fe.points));
         let p_max = fe.points.last().map_or(0.0, |p| p.p_over_estar);
         for model in Model::ALL {
             let drawn = !model.frictionless() || t == 0;
             let mut line = vec![];
-            for k in 1..=s.model_points {
-                let p = p_max * k as f64 / s.model_points as f64;
+            for p in s.settings().model_loads(p_max) {
                 if let Some(c) = s.model_fraction(model, &profile, tau, p)? {
                     line.push((p, c));
                     curves.push(vec![
@@ -104,30 +96,18 @@ pub(super) fn profile_panel(
     })
 }
 
-/// The estimate of the FE curve's relative error (root mean square over its points with a
-/// contact fraction of at least `error_from_contact_fraction`,
-/// [`contact_fraction_error_estimate`]) from the same case on `error_estimate_mesh`, over the
-/// load range both reach (a coarse curve may stop short); `None` when the curve is incomplete or
-/// they share no point.
+/// The estimate of the FE curve's relative error from the same case on `error_estimate_mesh`
+/// ([`crate::runner::scenes::profile_comparison::ComparisonSettings::fe_error_estimate`]).
 fn fe_error_estimate(
     s: &TwoScaleScene,
     i: usize,
     case: &FeCase,
     solved: &SolvedCases,
 ) -> Option<f64> {
-    let ratio = s.mesh_of(i) as f64 / s.estimate_mesh_of(i) as f64;
     let fine = solved.outcome(case)?;
     let coarse = solved.outcome(&s.coarse_case(i, case))?;
-    if fine.failure.is_some() {
-        return None;
-    }
-    contact_fraction_error_estimate(
-        &fine.points,
-        &coarse.points,
-        ratio,
-        s.fe_error_order,
-        s.error_from_contact_fraction,
-    )
+    s.settings()
+        .fe_error_estimate(fine, coarse, s.profile(i).max_order())
 }
 
 /// The errors of `model` against the FE curve at its points with a contact fraction of at
@@ -140,29 +120,17 @@ fn error_row(
     profile: &Profile,
     fe: &FeOutcome,
 ) -> Result<Vec<Cell>> {
-    let (mut count, mut max_rel, mut sum_sq, mut max_abs) = (0usize, 0.0_f64, 0.0, 0.0_f64);
-    for p in fe
-        .points
-        .iter()
-        .filter(|p| p.contact_fraction >= s.error_from_contact_fraction)
-    {
-        if let Some(c) = s.model_fraction(model, profile, tau, p.p_over_estar)? {
-            let rel = c / p.contact_fraction - 1.0;
-            count += 1;
-            max_rel = max_rel.max(rel.abs());
-            sum_sq += rel * rel;
-            max_abs = max_abs.max((c - p.contact_fraction).abs());
-        }
-    }
-    let rms = (count > 0).then(|| (sum_sq / count as f64).sqrt());
+    let e = ModelErrors::against(&fe.points, s.error_from_contact_fraction, |p| {
+        s.model_fraction(model, profile, tau, p)
+    })?;
     Ok(vec![
         name.into(),
         tau.into(),
         model.name().into(),
-        Cell::Num(count as f64),
-        (count > 0).then_some(max_rel).into(),
-        rms.into(),
-        (count > 0).then_some(max_abs).into(),
+        Cell::Num(e.map_or(0, |e| e.points) as f64),
+        e.map(|e| e.max_rel).into(),
+        e.map(|e| e.rms_rel).into(),
+        e.map(|e| e.max_abs).into(),
     ])
 }
 
