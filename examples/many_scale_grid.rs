@@ -7,7 +7,9 @@
 //! the mesh resolution) and whose frictionless curve the cost model estimates
 //! (`runner::requests::cost_estimate`, to a/λ 0.45 on one core) within `BUDGET_S` seconds
 //! (default 300); the K beyond are listed with the refusal or the estimate. One markdown row per
-//! (γ, D, K): the mesh, then RMS relative errors of the contact fraction against the FE.
+//! (γ, D, K): the mesh, RMS relative errors of the contact fraction against the FE, and the wall
+//! time of the (γ, D) run (all its K, both τ_max, both meshes, the models and the BEM; 2 cores
+//! share it).
 //!
 //! `cargo run --release --example many_scale_grid` (`BUDGET_S=…` to go further)
 
@@ -93,8 +95,8 @@ fn main() -> anyhow::Result<()> {
     let cache = tempfile::tempdir()?;
     let mut opts = RunOptions::default();
     opts.sweep.cache_dir = cache.path().to_path_buf();
-    println!("| profile | mesh | recursion, Westergaard | recursion, WNL | WNL, τ_max 0.1 MPa | linear BEM | FE's own error |");
-    println!("|---|---|---|---|---|---|---|");
+    println!("| profile | mesh | recursion, Westergaard | recursion, WNL | WNL, τ_max 0.1 MPa | linear BEM | FE's own error | run |");
+    println!("|---|---|---|---|---|---|---|---|");
     for gamma in [3u32, 4, 8] {
         for d in [1.3, 1.5, 1.7] {
             let solved = (2..=4)
@@ -105,18 +107,19 @@ fn main() -> anyhow::Result<()> {
                 let spec = Spec::parse(&text, "many_scale.toml")?;
                 let started = std::time::Instant::now();
                 let out = run_spec(&spec, "many_scale", root, &opts)?;
-                eprintln!(
-                    "γ {gamma}, D {d}, K ≤ {k_max}: {:.0} s",
-                    started.elapsed().as_secs_f64()
-                );
+                let seconds = started.elapsed().as_secs_f64();
                 let errors = &out.tables[1];
                 for k in 2..=k_max {
                     let profile = format!("weierstrass:{ar0},{gamma},{d},{k}");
                     let (nx, ny) = mesh_of(&spec, gamma.pow(k - 1)).counts();
                     let at =
                         |tau, model, column| percent(&cell(errors, &profile, tau, model, column));
+                    let run = match k {
+                        2 => format!("{seconds:.0} s for K ≤ {k_max}"),
+                        _ => String::new(),
+                    };
                     println!(
-                        "| `{profile}` | {nx} × {ny} | {} | {} | {} | {} | {} |",
+                        "| `{profile}` | {nx} × {ny} | {} | {} | {} | {} | {} | {run} |",
                         at("0", "recursion-westergaard", "rms_rel_error"),
                         at("0", "recursion-wnl", "rms_rel_error"),
                         at("0.1", "recursion-wnl", "rms_rel_error"),
@@ -127,7 +130,7 @@ fn main() -> anyhow::Result<()> {
             }
             for k in solved.map_or(2, |k| k + 1)..=4 {
                 let why = not_solved(&template, ar0, gamma, d, k, budget).unwrap_or_default();
-                println!("| `weierstrass:{ar0},{gamma},{d},{k}` | {why} |||||");
+                println!("| `weierstrass:{ar0},{gamma},{d},{k}` | {why} ||||||");
             }
         }
     }

@@ -18,8 +18,10 @@ pub struct CurvePoint {
     pub p_over_estar_reaction: f64,
     /// Slab displacement `d/λ`.
     pub slab_displacement_over_lambda: f64,
-    /// Newton iterations spent on this step (all active-set passes; on unloading also those of
-    /// the intermediate steps and failed tries before it).
+    /// Newton iterations spent reaching this point: every active-set pass, the event search's
+    /// trials and sub-steps, a target retargeted to a node that touched first, the release
+    /// searches, and the failed tries before each of them (their last pass); on unloading also
+    /// the intermediate steps.
     pub newton_iterations: usize,
     /// Contact-face nodes in contact.
     pub active_nodes: usize,

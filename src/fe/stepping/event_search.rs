@@ -192,7 +192,7 @@ pub(crate) struct EventSearch<'a> {
 impl EventSearch<'_> {
     /// The converged state at the event and the Newton iterations spent: the bordered
     /// solve first (if [`StepOptions::bordered_edge_solve`]; in committed sub-steps
-    /// with friction), else the regula-falsi search.
+    /// with friction), else the regula-falsi search; failed tries count.
     pub(crate) fn find(
         &self,
         model: &Model,
@@ -200,7 +200,7 @@ impl EventSearch<'_> {
         step: usize,
     ) -> Result<(State, usize), SolveError> {
         let bordered = if !self.opts.steps.bordered_edge_solve {
-            None
+            Err(0)
         } else if model.is_potential() {
             self.bordered(
                 model,
@@ -214,8 +214,11 @@ impl EventSearch<'_> {
             self.bordered_in_substeps(model, asm)
         };
         let (found, iters) = match bordered {
-            Some(found) => found,
-            None => self.regula_falsi(model, asm, step)?,
+            Ok(found) => found,
+            Err(spent) => {
+                let (found, iters) = self.regula_falsi(model, asm, step)?;
+                (found, iters + spent)
+            }
         };
         if found.d <= self.from.d {
             return Err(SolveError::EdgeSearch {
@@ -257,7 +260,7 @@ impl EventSearch<'_> {
 
     /// One bordered attempt ([`equilibrate_event`]), predicted for
     /// `base.d + increment`: accepted if the target's gap is within the tolerance and the
-    /// slab displacement has advanced beyond the last event.
+    /// slab displacement has advanced beyond the last event; else the iterations it spent.
     fn bordered(
         &self,
         model: &Model,
@@ -266,26 +269,33 @@ impl EventSearch<'_> {
         base_prev: Option<&State>,
         tangent: Option<&LoadTangent>,
         increment: f64,
-    ) -> Option<(State, usize)> {
-        predictor(model, base, base_prev, increment, tangent).and_then(|mut st| {
-            let it =
-                equilibrate_event(model, asm, &mut st, self.opts, self.node, self.gap_tol).ok()?;
-            let g = self.gap(model, &st);
-            (g.abs() <= self.gap_tol && st.d > self.from.d).then_some((st, it))
-        })
+    ) -> Result<(State, usize), usize> {
+        let mut st = predictor(model, base, base_prev, increment, tangent).ok_or(0usize)?;
+        let it = equilibrate_event(model, asm, &mut st, self.opts, self.node, self.gap_tol)
+            .map_err(|f| f.iterations())?;
+        let g = self.gap(model, &st);
+        match g.abs() <= self.gap_tol && st.d > self.from.d {
+            true => Ok((st, it)),
+            false => Err(it),
+        }
     }
 
     /// With friction the step is path dependent: when the event cannot be reached in one
     /// increment, advance by converged, committed sub-steps (the trial increment cut
-    /// each time, the target node held free) and retry the bordered solve from there.
-    fn bordered_in_substeps(&self, model: &Model, asm: &mut Assembly) -> Option<(State, usize)> {
+    /// each time, the target node held free) and retry the bordered solve from there. Failing,
+    /// the iterations every try spent.
+    fn bordered_in_substeps(
+        &self,
+        model: &Model,
+        asm: &mut Assembly,
+    ) -> Result<(State, usize), usize> {
         let mut base = self.from.clone();
         let mut base_prev = self.before.cloned();
         let mut tangent = self.tangent.clone();
         let mut increment = self.first_increment;
         let mut spent = 0;
         for _ in 0..=self.opts.steps.max_step_cuts {
-            if let Some((st, it)) = self.bordered(
+            match self.bordered(
                 model,
                 asm,
                 &base,
@@ -293,7 +303,8 @@ impl EventSearch<'_> {
                 tangent.as_ref(),
                 increment,
             ) {
-                return Some((st, it + spent));
+                Ok((st, it)) => return Ok((st, it + spent)),
+                Err(it) => spent += it,
             }
             increment *= STEP_CUT_FACTOR;
             let sub = self.held_free(
@@ -304,16 +315,19 @@ impl EventSearch<'_> {
                 tangent.as_ref(),
                 increment,
             );
-            if let Ok((mut st, it)) = sub {
-                spent += it;
-                if self.gap(model, &st) > self.gap_tol {
-                    asm.commit_slip(model, &mut st);
-                    base_prev = Some(std::mem::replace(&mut base, st));
-                    tangent = tangent_at(model, asm, self.opts, &base);
+            match sub {
+                Ok((mut st, it)) => {
+                    spent += it;
+                    if self.gap(model, &st) > self.gap_tol {
+                        asm.commit_slip(model, &mut st);
+                        base_prev = Some(std::mem::replace(&mut base, st));
+                        tangent = tangent_at(model, asm, self.opts, &base);
+                    }
                 }
+                Err(f) => spent += f.iterations(),
             }
         }
-        None
+        Err(spent)
     }
 
     /// Regula-falsi (Illinois) search on `d` with ordinary Newton solves, the target held
@@ -354,10 +368,13 @@ impl EventSearch<'_> {
             let base_prev = search.below_prev.as_ref().map(|p| &p.at);
             let increment = trial - base_d;
             match self.held_free(model, asm, base, base_prev, tangent.as_ref(), increment) {
-                Err(f) => match cuts.cut(base_d, trial) {
-                    Some(cut) => trial = cut,
-                    None => return Err(f.into_error(step, trial)),
-                },
+                Err(f) => {
+                    iters += f.iterations();
+                    match cuts.cut(base_d, trial) {
+                        Some(cut) => trial = cut,
+                        None => return Err(f.into_error(step, trial)),
+                    }
+                }
                 Ok((st, it)) => {
                     iters += it;
                     let g = self.gap(model, &st);

@@ -25,7 +25,7 @@ use crate::fe::stepping::node_events::{
 };
 use crate::fe::stepping::predictor::{displacement_step, tangent_at, LoadTangent};
 use crate::fe::stepping::pressure_target::{land_on_pressure, Overshoot, PRESSURE_TARGET_RTOL};
-use crate::fe::stepping::release_events::first_release;
+use crate::fe::stepping::release_events::{first_release, ReleaseSearch};
 use crate::fe::{Curve, SolveOptions};
 
 /// How the load steps from one contact event to the next.
@@ -405,7 +405,8 @@ impl Branch<'_> {
     /// The slab displacement at which node `k` touches with zero force, predicted along the
     /// load tangent (scaled by the previous event's ratio of actual to extrapolated increment)
     /// and found by [`EventSearch`]. With node events, a node that touched on the way came first
-    /// and becomes the target ([`passed_touchdowns`], at most [`MAX_RETARGETS`] times).
+    /// and becomes the target ([`passed_touchdowns`], at most [`MAX_RETARGETS`] times); the
+    /// iterations of every search count.
     fn find_event(
         &self,
         asm: &mut Assembly,
@@ -415,7 +416,7 @@ impl Branch<'_> {
         step: usize,
     ) -> Result<Found, SolveError> {
         let model = self.model;
-        let mut retargets = 0;
+        let (mut retargets, mut spent) = (0, 0);
         loop {
             let gap0 = model.gaps(&path.cur)[k];
             let extrapolated = tangent
@@ -433,6 +434,7 @@ impl Branch<'_> {
                 last_increment: path.last_increment,
             };
             let (st, iterations) = search.find(model, asm, step)?;
+            spent += iterations;
             match passed_touchdowns(model, &path.cur, &st, tangent.as_deref()) {
                 Some(j) if self.events == Events::AnyNode && retargets < MAX_RETARGETS => {
                     retargets += 1;
@@ -442,7 +444,7 @@ impl Branch<'_> {
                     return Ok(Found {
                         state: st,
                         node: k,
-                        iterations,
+                        iterations: spent,
                         extrapolated,
                     })
                 }
@@ -467,19 +469,20 @@ impl Branch<'_> {
             mut iterations,
             extrapolated,
         } = found;
-        let release = match self.events {
+        let search = match self.events {
             Events::AnyNode => first_release(model, asm, opts, &path.cur, &st, k)
                 .map_err(|f| f.into_error(step, st.d))?,
-            Events::EdgeByEdge => None,
+            Events::EdgeByEdge => ReleaseSearch::default(),
         };
-        if let Some(r) = release {
+        iterations += search.iterations;
+        if let Some(r) = search.release {
             return Ok(SettledEvent {
                 state: r.state,
                 edge: EdgeAt::OutermostPatch(None),
                 released: Some(r.node),
                 extrapolated: None,
                 node: k,
-                iterations: iterations + r.iterations,
+                iterations,
             });
         }
         model.activate(&mut st, k);

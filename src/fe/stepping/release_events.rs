@@ -40,7 +40,14 @@ pub(crate) struct Release {
     pub(crate) state: State,
     /// The released contact-face node.
     pub(crate) node: usize,
-    /// Newton iterations spent locating it.
+}
+
+/// A release search's outcome and the Newton iterations it spent, a release found or not.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ReleaseSearch {
+    /// The release, if the node lets go on the way.
+    pub(crate) release: Option<Release>,
+    /// Newton iterations spent: the trial steps, failed ones included.
     pub(crate) iterations: usize,
 }
 
@@ -66,8 +73,9 @@ fn release_force(
 /// Where contact node `node` of the converged state `from` (compressive there) lets go on the
 /// way to the slab displacement `beyond_d` (either direction), the nodes of `hold` kept as they
 /// are and `node` held active until its release force vanishes within the release threshold.
-/// `None` when, held active, it is still compressive at `beyond_d`: it does not let go on the
-/// way. A trial step that fails is cut back towards its start (at most `max_step_cuts` times).
+/// No release when, held active, it is still compressive at `beyond_d`: it does not let go on
+/// the way. A trial step that fails is cut back towards its start (at most `max_step_cuts`
+/// times); the iterations it spent count.
 pub(crate) fn locate_release(
     model: &Model,
     asm: &mut Assembly,
@@ -76,7 +84,7 @@ pub(crate) fn locate_release(
     node: usize,
     beyond_d: f64,
     hold: Hold,
-) -> Result<Option<Release>, StepFail> {
+) -> Result<ReleaseSearch, StepFail> {
     let held = Hold {
         active: Some(node),
         ..hold
@@ -93,7 +101,10 @@ pub(crate) fn locate_release(
     let (beyond, mut iterations) = displacement_step(model, asm, opts, from, beyond_d, held)?;
     let (fb, tol) = release_force(model, asm, opts, &beyond, node);
     if fb >= -tol {
-        return Ok(None);
+        return Ok(ReleaseSearch {
+            release: None,
+            iterations,
+        });
     }
     search.beyond = Some((beyond_d, fb));
     let mut cuts = StepCuts::new(opts.steps.max_step_cuts);
@@ -104,6 +115,7 @@ pub(crate) fn locate_release(
         let (mut st, it) = match displacement_step(model, asm, opts, start, d, held) {
             Ok(converged) => converged,
             Err(f) => {
+                iterations += f.iterations();
                 next = cuts.cut(start.d, d).ok_or(f)?;
                 continue;
             }
@@ -114,11 +126,10 @@ pub(crate) fn locate_release(
             // touching with zero force: releasing it leaves the equilibrium as it is
             st.active[node] = false;
             iterations += equilibrate(model, asm, &mut st, opts, hold)?;
-            return Ok(Some(Release {
-                state: st,
-                node,
+            return Ok(ReleaseSearch {
+                release: Some(Release { state: st, node }),
                 iterations,
-            }));
+            });
         }
         search.insert(Trial { x: d, f, at: st });
         next = search.next(0.0, 1.0).expect("bracketed");
@@ -136,7 +147,8 @@ pub(crate) fn locate_release(
 /// converged state `from`, if any: among the nodes the step released ([`released_nodes`]),
 /// the one that lets go first ([`locate_release`], the target held free), provided that the
 /// target is still open there and no other node has touched on the way
-/// ([`passed_touchdowns`]); otherwise the touchdown is the event.
+/// ([`passed_touchdowns`]); otherwise the touchdown is the event. Its iterations are those of
+/// every search, whichever is kept.
 pub(crate) fn first_release(
     model: &Model,
     asm: &mut Assembly,
@@ -144,25 +156,27 @@ pub(crate) fn first_release(
     from: &State,
     found: &State,
     target: usize,
-) -> Result<Option<Release>, StepFail> {
+) -> Result<ReleaseSearch, StepFail> {
     let mut first: Option<Release> = None;
     let mut iterations = 0;
     let hold = Hold::free(Some(target));
     for j in released_nodes(from, found) {
-        if let Some(r) = locate_release(model, asm, opts, from, j, found.d, hold)? {
-            iterations += r.iterations;
+        let search = locate_release(model, asm, opts, from, j, found.d, hold)?;
+        iterations += search.iterations;
+        if let Some(r) = search.release {
             if first.as_ref().is_none_or(|f| r.state.d < f.state.d) {
                 first = Some(r);
             }
         }
     }
-    if let Some(r) = first.as_mut() {
-        r.iterations = iterations;
-    }
-    Ok(first.filter(|r| {
+    let release = first.filter(|r| {
         model.gaps(&r.state)[target] > open_gap_tolerance(model)
             && passed_touchdowns(model, from, &r.state, None).is_none()
-    }))
+    });
+    Ok(ReleaseSearch {
+        release,
+        iterations,
+    })
 }
 
 #[cfg(test)]
@@ -207,6 +221,7 @@ mod tests {
             Hold::NONE,
         )
         .expect("the release search converges")
+        .release
         .expect("the node lets go on the way back");
         assert_eq!(release.node, node);
         assert!(!release.state.active[node]);
@@ -258,7 +273,8 @@ mod tests {
             Hold::NONE,
         )
         .expect("the step converges");
-        assert!(none.is_none());
+        assert!(none.release.is_none());
+        assert!(none.iterations > 0, "the step beyond is counted");
     }
 
     /// Released nodes are those in contact before and free after.
