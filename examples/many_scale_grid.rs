@@ -31,14 +31,10 @@ fn spec_text(template: &str, ar0: f64, gamma: u32, d: f64, k: u32) -> String {
     )
 }
 
-/// The FE mesh of the finest order `n` under the spec's settings (the scene's rule).
-fn mesh_of(spec: &Spec, n: u32) -> MeshLevel {
-    let s = spec.many_scale.as_ref().expect("a many-scale spec");
-    let nx = s
-        .mesh
-        .max((s.elements_per_finest_wavelength * n as usize).div_ceil(2));
-    let ny = ((nx as f64 * s.depth_ratio).round() as usize).max(2);
-    MeshLevel::Elements { nx, ny }
+/// The FE mesh the spec's scene solves `profile` on.
+fn mesh_of(spec: &Spec, profile: &Profile) -> MeshLevel {
+    let scene = spec.many_scale.as_ref().expect("a many-scale spec");
+    scene.fe_mesh(profile)
 }
 
 /// Why K scales are not solved (the finite-strain slope limit first, then the spec's other
@@ -58,7 +54,7 @@ fn not_solved(template: &str, ar0: f64, gamma: u32, d: f64, k: u32, budget: f64)
     match Spec::parse(&text, "many_scale.toml") {
         Err(e) => Some(format!("refused: {}", e.to_string().replace('\n', " "))),
         Ok(spec) => {
-            let cost = CostEstimate::of(mesh_of(&spec, gamma.pow(k - 1)));
+            let cost = CostEstimate::of(mesh_of(&spec, &profile));
             (cost.seconds > budget).then(|| format!("beyond the budget: {}", cost.describe()))
         }
     }
@@ -110,16 +106,15 @@ fn main() -> anyhow::Result<()> {
                 let seconds = started.elapsed().as_secs_f64();
                 let errors = &out.tables[1];
                 for k in 2..=k_max {
-                    let profile = format!("weierstrass:{ar0},{gamma},{d},{k}");
-                    let (nx, ny) = mesh_of(&spec, gamma.pow(k - 1)).counts();
-                    let at =
-                        |tau, model, column| percent(&cell(errors, &profile, tau, model, column));
+                    let name = format!("weierstrass:{ar0},{gamma},{d},{k}");
+                    let (nx, ny) = mesh_of(&spec, &name.parse()?).counts();
+                    let at = |tau, model, column| percent(&cell(errors, &name, tau, model, column));
                     let run = match k {
                         2 => format!("{seconds:.0} s for K ≤ {k_max}"),
                         _ => String::new(),
                     };
                     println!(
-                        "| `{profile}` | {nx} × {ny} | {} | {} | {} | {} | {} | {run} |",
+                        "| `{name}` | {nx} × {ny} | {} | {} | {} | {} | {} | {run} |",
                         at("0", "recursion-westergaard", "rms_rel_error"),
                         at("0", "recursion-wnl", "rms_rel_error"),
                         at("0.1", "recursion-wnl", "rms_rel_error"),

@@ -26,8 +26,9 @@ pub fn default_grid_points(profile: &Profile) -> usize {
         .max(4096)
 }
 
-/// The relative tolerance of the solver's gaps and slips (over `Σ Δ_k`).
-const TOLERANCE: f64 = 1e-10;
+/// The relative tolerance of the solver's gaps and slips (over `Σ Δ_k`) for a request and for
+/// a scene's boundary-element curves.
+pub const TOLERANCE: f64 = 1e-10;
 
 /// A checked boundary-element request, ready to solve.
 #[derive(Debug, Clone, PartialEq)]

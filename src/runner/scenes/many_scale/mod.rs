@@ -12,9 +12,10 @@
 mod scale_panels;
 
 use crate::bem::{self, ElasticBody};
+use crate::fe::MeshLevel;
 use crate::models::{profile_contact, CoefficientSet, ModelKind, ModelLaw, Reading};
 use crate::profile::{Profile, Weierstrass};
-use crate::runner::requests::bem_solve::default_grid_points;
+use crate::runner::requests::bem_solve::{self, default_grid_points};
 use crate::runner::scenes::profile_comparison::ComparisonSettings;
 use crate::runner::scenes::scene_output::{Layout, Remarks};
 use crate::runner::scenes::{Scene, SceneContext, SceneResult};
@@ -23,9 +24,6 @@ use crate::runner::RunOptions;
 use crate::spec::{Bounded, NonNegative, SpecError, Validator};
 use anyhow::Result;
 use plotters::style::RGBColor;
-
-/// The boundary-element solver's relative tolerance (gap over `Σ Δ_k`).
-const BEM_TOLERANCE: f64 = 1e-10;
 
 /// A Weierstrass family (R14): its profiles of K = 1 … `scales` scales are solved.
 #[derive(Debug, Clone, serde::Deserialize)]
@@ -172,6 +170,13 @@ impl ManyScaleScene {
         self.settings().mesh_for(case.profile.max_order())
     }
 
+    /// The FE mesh the scene solves `profile` on (its face elements grown for the finest
+    /// harmonic, `depth_ratio` as many across the thickness).
+    pub fn fe_mesh(&self, profile: &Profile) -> MeshLevel {
+        let nx = self.settings().mesh_for(profile.max_order());
+        self.settings().options(nx).mesh
+    }
+
     /// The face elements of `case`'s error-estimate mesh.
     fn estimate_mesh_of(&self, case: &ScaleCase) -> usize {
         self.settings().estimate_mesh_for(case.profile.max_order())
@@ -253,7 +258,7 @@ impl ManyScaleScene {
         loads
             .par_iter()
             .map(|&p| {
-                let contact = bem::solve_on(profile, body, p, grid, BEM_TOLERANCE)?;
+                let contact = bem::solve_on(profile, body, p, grid, bem_solve::TOLERANCE)?;
                 Ok(contact.contact_fraction)
             })
             .collect()

@@ -72,31 +72,42 @@ impl Tables {
         vec![self.curves, self.errors]
     }
 
+    /// One row of the curves table.
+    fn push_point(
+        &mut self,
+        case: &ScaleCase,
+        tau: f64,
+        source: &str,
+        (p, c): (f64, f64),
+        patches: Cell,
+    ) {
+        self.curves.push(vec![
+            case.name().into(),
+            Cell::Num(case.weierstrass.scales as f64),
+            tau.into(),
+            source.into(),
+            p.into(),
+            c.into(),
+            patches,
+        ]);
+    }
+
     fn push_curve(&mut self, case: &ScaleCase, tau: f64, source: &str, points: &[(f64, f64)]) {
-        for &(p, c) in points {
-            self.curves.push(vec![
-                case.name().into(),
-                Cell::Num(case.weierstrass.scales as f64),
-                tau.into(),
-                source.into(),
-                p.into(),
-                c.into(),
-                Cell::Empty,
-            ]);
+        for &point in points {
+            self.push_point(case, tau, source, point, Cell::Empty);
         }
     }
 
     fn push_fe_curve(&mut self, case: &ScaleCase, tau: f64, points: &[CurvePoint]) {
         for p in points {
-            self.curves.push(vec![
-                case.name().into(),
-                Cell::Num(case.weierstrass.scales as f64),
-                tau.into(),
-                "fe".into(),
-                p.p_over_estar.into(),
-                p.contact_fraction.into(),
-                Cell::Num(p.patches as f64),
-            ]);
+            let patches = Cell::Num(p.patches as f64);
+            self.push_point(
+                case,
+                tau,
+                "fe",
+                (p.p_over_estar, p.contact_fraction),
+                patches,
+            );
         }
     }
 
