@@ -36,8 +36,6 @@ def test_a_frictional_loop_on_the_half_plane_matches_the_command_line():
 
 
 def test_the_boundary_element_solver_refuses_what_it_does_not_model():
-    with pytest.raises(ValueError, match="half-plane only"):
-        wavy.solve(solver="bem", ar=0.1, tau_max_mpa=0.1)
     with pytest.raises(ValueError, match="small-strain"):
         wavy.solve(solver="bem", ar=0.1, kinematics="finite")
     with pytest.raises(ValueError, match="boundary-element solver's grid"):

@@ -115,7 +115,7 @@ def solve(
         above the memory the machine has available in any case. Default None (no cap).
     solver : str, optional
         "fe" (the finite-element solver) or "bem" (the boundary-element solver: linear
-        kinematics; the layer frictionless, or the half-plane with ``half_plane=True``, with
+        kinematics; the layer, or the half-plane with ``half_plane=True``, with
         Coulomb–Orowan friction and its history). The columns are the same; with "bem",
         ``slab_displacement_over_lambda`` holds the rigid approach δ/λ,
         ``newton_iterations`` the normal–tangential passes and ``active_nodes`` the contact
@@ -127,7 +127,7 @@ def solve(
         With ``solver="bem"``: loading points up to the frictionless load of the target, in
         [2, 10000]. Default None: 40.
     half_plane : bool, optional
-        With ``solver="bem"``: the half-plane instead of the layer (needed for friction).
+        With ``solver="bem"``: the half-plane instead of the layer.
         Default False.
 
     Returns

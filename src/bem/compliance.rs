@@ -149,14 +149,96 @@ fn layer_terms(q: f64, thickness: f64, poisson: f64) -> Result<(f64, f64, f64), 
     Ok((numerator, deficit, denominator))
 }
 
+/// One surface harmonic's compliance matrix over the half-plane's frictionless `2/(E* q)`, for
+/// a body that carries shear as well as pressure: with `p̃ cos qx` the pressure and `q̃ sin qx` the
+/// shear traction on the solid (along `+x`), the surface moves in by `ũ_z cos qx` and along `+x`
+/// by `ũ_x sin qx`,
+///
+/// ```text
+/// ũ_z = (2/(E* q)) (normal p̃ − coupling q̃),     ũ_x = (2/(E* q)) (tangential q̃ − coupling p̃)
+/// ```
+///
+/// which on the grid is `u_z = K (S_n p + S_c H q)`, `u_x = K (S_t q − S_c H p)` (`H cos = sin`).
+/// The matrix is symmetric (Betti's reciprocity) and positive definite (the stored energy).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HarmonicCompliance {
+    /// `S_n`: pressure to normal displacement (the frictionless ratio, [`layer_to_half_plane_ratio`]).
+    pub normal: f64,
+    /// `S_t`: shear to tangential displacement.
+    pub tangential: f64,
+    /// `S_c`: shear to normal and pressure to tangential displacement; Dundurs' `β` on the
+    /// half-plane.
+    pub coupling: f64,
+}
+
+impl HarmonicCompliance {
+    /// The half-plane of Poisson ratio `ν`, every harmonic alike: `S_n = S_t = 1`,
+    /// `S_c = β = (1 − 2ν)/(2(1 − ν))` (Johnson, *Contact Mechanics*, 1985, eqs. 2.25).
+    pub fn half_plane(poisson: f64) -> Self {
+        Self {
+            normal: 1.0,
+            tangential: 1.0,
+            coupling: dundurs_beta(poisson),
+        }
+    }
+
+    /// A layer of thickness `h` (λ) bonded to a rigid base, Poisson ratio `ν`, at the wavenumber
+    /// `q` (1/λ). With `t = 2qh` and `D` the denominator of [`layer_to_half_plane_ratio`]:
+    ///
+    /// ```text
+    /// S_n = [(3 − 4ν) sinh t − t]/D,   S_t = [(3 − 4ν) sinh t + t]/D,
+    /// S_c = [(1 − 2ν)(3 − 4ν)(cosh t − 1) − 2(qh)²] / (2(1 − ν) D)
+    /// ```
+    ///
+    /// from the general solution of Navier's equations for one mode (`e^{±qz}`, `z e^{±qz}`) with
+    /// the base held and the surface loaded, checked against a shooting solution (tests). Limits:
+    /// the half-plane's `(1, 1, β)` for a thick layer; a thin one shears like a block,
+    /// `S_t → qh/(1 − ν)`; the coupling changes sign below `qh ≈ 1.0` at ν 0.3 (−0.0144 at
+    /// `qh = 0.5`, +0.069 at `π/2`), and an incompressible layer is coupled too, through its
+    /// base (`S_c → −(qh)²` thin).
+    pub fn layer(q: f64, thickness: f64, poisson: f64) -> Result<Self, BemError> {
+        let (normal, _, denominator) = layer_terms(q, thickness, poisson)?;
+        let nu = poisson;
+        let t = 2.0 * q * thickness;
+        let e = (-t).exp();
+        // every term times 2e^{−t}, as in `layer_terms`
+        let sinh_scaled = -(-2.0 * t).exp_m1();
+        let tangential = (3.0 - 4.0 * nu) * sinh_scaled + 2.0 * t * e;
+        let cosh_minus_one_scaled = (-t).exp_m1().powi(2);
+        let coupling = (1.0 - 2.0 * nu) * (3.0 - 4.0 * nu) * cosh_minus_one_scaled - t * t * e;
+        Ok(Self {
+            normal: normal / denominator,
+            tangential: tangential / denominator,
+            coupling: coupling / (2.0 * (1.0 - nu) * denominator),
+        })
+    }
+
+    /// `body`'s matrix at the wavenumber `q`; `poisson` is the half-plane's (a layer has its own).
+    pub fn of(body: ElasticBody, q: f64, poisson: f64) -> Result<Self, BemError> {
+        match body {
+            ElasticBody::HalfPlane => {
+                check_wavenumber(q)?;
+                Ok(Self::half_plane(poisson))
+            }
+            ElasticBody::Layer { thickness, poisson } => Self::layer(q, thickness, poisson),
+        }
+    }
+}
+
+/// Dundurs' `β = (1 − 2ν)/(2(1 − ν))` of an elastic body on a rigid one.
+pub fn dundurs_beta(poisson: f64) -> f64 {
+    (1.0 - 2.0 * poisson) / (2.0 * (1.0 - poisson))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// `S` by shooting: Navier's equations for one mode `u_x = U(z) sin qx`, `u_z = W(z) cos qx`
-    /// (z the depth, G = 1), RK4 from the bonded base `z = h` (U = W = 0) up to the surface, where
-    /// the shear vanishes and `σ_zz = −1`; then `S = W(0)·E* q/2 = W(0) q/(1 − ν)`.
-    fn shooting_ratio(q: f64, h: f64, nu: f64) -> f64 {
+    /// The surface's response by shooting: Navier's equations for one mode `u_x = U(z) sin qx`,
+    /// `u_z = W(z) cos qx` (z the depth, G = 1), RK4 from the bonded base `z = h` (U = W = 0) up
+    /// to the surface, where `σ_zz = −p̃` and `σ_xz = −q̃` (the load `p̃ cos qx` inwards,
+    /// `q̃ sin qx` along `+x`); returns `(W(0), U(0))` over the half-plane's `(1 − ν)/q` (= 2/(E* q)).
+    fn shooting_response(q: f64, h: f64, nu: f64, load: [f64; 2]) -> [f64; 2] {
         let lam = 2.0 * nu / (1.0 - 2.0 * nu);
         let rhs = |y: [f64; 4]| {
             let [u, w, du, dw] = y;
@@ -179,15 +261,82 @@ mod tests {
                 });
             }
             let [u, w, du, dw] = y;
-            // (shear σ_xz/sin, normal σ_zz/cos, W) at the surface
-            (du - q * w, lam * (q * u + dw) + 2.0 * dw, w)
+            // (shear σ_xz/sin, normal σ_zz/cos, U, W) at the surface
+            (du - q * w, lam * (q * u + dw) + 2.0 * dw, u, w)
         };
-        let (sa, na, wa) = shoot([0.0, 0.0, 1.0, 0.0]);
-        let (sb, nb, wb) = shoot([0.0, 0.0, 0.0, 1.0]);
-        // α sa + β sb = 0, α na + β nb = −1
+        let (sa, na, ua, wa) = shoot([0.0, 0.0, 1.0, 0.0]);
+        let (sb, nb, ub, wb) = shoot([0.0, 0.0, 0.0, 1.0]);
+        // α sa + β sb = −q̃, α na + β nb = −p̃
+        let [p, t] = load;
         let det = sa * nb - sb * na;
-        let (alpha, beta) = (sb / det, -sa / det);
-        (alpha * wa + beta * wb) * q / (1.0 - nu)
+        let alpha = (-t * nb + p * sb) / det;
+        let beta = (-p * sa + t * na) / det;
+        let scale = q / (1.0 - nu);
+        [
+            (alpha * wa + beta * wb) * scale,
+            (alpha * ua + beta * ub) * scale,
+        ]
+    }
+
+    /// `S` by shooting ([`shooting_response`] under pressure alone).
+    fn shooting_ratio(q: f64, h: f64, nu: f64) -> f64 {
+        shooting_response(q, h, nu, [1.0, 0.0])[0]
+    }
+
+    /// The layer's matrix against the shooting solution, every entry within 1e-10 of the
+    /// largest (the shear column and the pressure column give the coupling twice: Betti).
+    #[test]
+    fn the_layer_matrix_solves_navier_equations() {
+        for nu in [0.0, 0.3, 0.45, 0.4995] {
+            for qh in [0.05, 0.5, 1.0, 3.0] {
+                let m = HarmonicCompliance::layer(qh, 1.0, nu).unwrap();
+                let [wp, up] = shooting_response(qh, 1.0, nu, [1.0, 0.0]);
+                let [wq, uq] = shooting_response(qh, 1.0, nu, [0.0, 1.0]);
+                let scale = m.tangential;
+                let pairs = [
+                    (m.normal, wp),
+                    (m.tangential, uq),
+                    (-m.coupling, wq),
+                    (-m.coupling, up),
+                ];
+                for (closed, shot) in pairs {
+                    assert!(
+                        (closed - shot).abs() < 1e-10 * scale,
+                        "ν = {nu}, qh = {qh}: {m:?} vs {pairs:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// The limits: the half-plane's `(1, 1, β)` for a thick layer; a thin layer shears as a
+    /// block (`S_t → qh/(1 − ν)`) and couples as `−(qh)²` when incompressible; the matrix is
+    /// positive definite throughout.
+    #[test]
+    fn the_layer_matrix_has_its_limits() {
+        for nu in [0.0, 0.3, 0.4995, 0.5] {
+            let thick = HarmonicCompliance::layer(40.0, 1.0, nu).unwrap();
+            let half = HarmonicCompliance::half_plane(nu);
+            assert!((thick.normal - 1.0).abs() < 1e-15, "ν = {nu}");
+            assert!((thick.tangential - 1.0).abs() < 1e-15, "ν = {nu}");
+            assert!((thick.coupling - half.coupling).abs() < 1e-15, "ν = {nu}");
+            for qh in [1e-4, 0.01, 0.3, 1.0, 2.0, 5.0] {
+                let m = HarmonicCompliance::layer(qh, 1.0, nu).unwrap();
+                assert!(
+                    m.normal * m.tangential > m.coupling * m.coupling,
+                    "ν = {nu}, qh = {qh}: {m:?}"
+                );
+            }
+            let qh = 1e-4;
+            let thin = HarmonicCompliance::layer(qh, 1.0, nu).unwrap();
+            assert!(
+                (thin.tangential / (qh / (1.0 - nu)) - 1.0).abs() < 1e-6,
+                "ν = {nu}: {thin:?}"
+            );
+        }
+        let thin = HarmonicCompliance::layer(1e-3, 1.0, 0.5).unwrap();
+        assert!((thin.coupling / -1e-6 - 1.0).abs() < 1e-5, "{thin:?}");
+        assert_eq!(HarmonicCompliance::half_plane(0.5).coupling, 0.0);
     }
 
     /// The closed form against the shooting solution, 1e-11 relative (measured ≤ 7e-14).

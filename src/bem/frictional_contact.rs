@@ -1,6 +1,6 @@
-//! Frictional contact on the periodic half-plane: a rigid even profile pressed by a mean
-//! pressure onto a compressible linear elastic half-plane with Coulomb–Orowan friction, the
-//! slip history carried from increment to increment (loading and unloading).
+//! Frictional contact on the periodic half-plane or a layer bonded to a rigid base: a rigid even
+//! profile pressed by a mean pressure onto a compressible linear elastic body with Coulomb–Orowan
+//! friction, the slip history carried from increment to increment (loading and unloading).
 //!
 //! Units: lengths over λ, tractions over E*.
 //!
@@ -17,7 +17,11 @@
 //! `K` the frictionless compliance (`2/(E*|q_k|)`), `H` the periodic Hilbert transform
 //! (`H cos = sin`), `β = (1 − 2ν)/(2(1 − ν))` Dundurs' parameter for a rigid indenter. The
 //! operator is symmetric and positive definite for `|β| < 1`. With `β = 0` (incompressible)
-//! the normal and tangential problems decouple and normal loading makes no shear.
+//! the normal and tangential problems decouple and normal loading makes no shear. A layer
+//! scales each harmonic of the three operators by its own ratios,
+//! `u_z = K_n p + K_c H q`, `u_x = K_t q − K_c H p` ([`super::HarmonicCompliance`]); below the
+//! half-plane's `β K` stands for `K_c`, `K` for `K_n` in the normal and `K_t` in the tangential
+//! problem. A bonded layer is coupled even when incompressible.
 //!
 //! # One increment (from the committed state to the mean pressure `p̄`)
 //!
@@ -39,8 +43,8 @@
 
 use super::grid::GridCompliance;
 use super::polonsky_keer::{self, Stalled};
-use super::ElasticBody;
 use super::{edges, shear_active_set, BemError};
+use super::{ElasticBody, HarmonicCompliance};
 use crate::profile::Profile;
 
 /// Whether the shear traction acts back on the normal problem.
@@ -81,10 +85,9 @@ impl InterfaceLaw {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FrictionalProblem<'a> {
     pub profile: &'a Profile,
-    /// The half-plane; a layer only without friction (its normal–tangential coupling is not
-    /// modelled: [`BemError::FrictionOnLayer`]).
+    /// The half-plane, or a layer bonded to a rigid base.
     pub body: ElasticBody,
-    /// Poisson ratio ν of the half-plane (`−1 < ν ≤ ½`).
+    /// Poisson ratio ν of the body (`−1 < ν ≤ ½`; a layer's own, which it must equal).
     pub poisson: f64,
     pub law: InterfaceLaw,
     pub coupling: NormalCoupling,
@@ -93,11 +96,6 @@ pub struct FrictionalProblem<'a> {
     pub points_per_wavelength: usize,
     /// Relative tolerance (`0 < tol < 1`): gaps and slips within `tol · Σ Δ_k`.
     pub tol: f64,
-}
-
-/// Dundurs' `β = (1 − 2ν)/(2(1 − ν))` of an elastic body on a rigid one.
-pub fn dundurs_beta(poisson: f64) -> f64 {
-    (1.0 - 2.0 * poisson) / (2.0 * (1.0 - poisson))
 }
 
 /// The state an increment starts from.
@@ -151,16 +149,21 @@ struct Fields {
     approach: f64,
 }
 
-/// The alternation's cap (each pass contracts the change of `q` by about `β²`).
+/// The alternation's cap (each pass contracts the change of `q` by about `β²` on the half-plane,
+/// by up to `S_c²/(S_n S_t)` on a layer: ¾ for a thin incompressible one).
 const MAX_PASSES: usize = 200;
 
 /// The frictional solver of one problem: its grid, operator and committed state.
 pub struct FrictionalContact {
     law: InterfaceLaw,
     coupling: NormalCoupling,
-    beta: f64,
     depth: Vec<f64>,
-    k_op: GridCompliance,
+    /// `K_n`, `K_t` and `K_c` of the module doc.
+    normal_op: GridCompliance,
+    tangential_op: GridCompliance,
+    coupling_op: GridCompliance,
+    /// Whether `K_c` is nonzero (the two problems talk to each other).
+    coupled: bool,
     /// The relative tolerance and the absolute one it gives gaps and slips (`tol · Σ Δ_k`, λ).
     tol: f64,
     tol_abs: f64,
@@ -175,12 +178,16 @@ impl FrictionalContact {
         let n = problem.points_per_wavelength;
         check_inputs(problem, &profile)?;
         let depth: Vec<f64> = (0..n).map(|i| -profile.y(i as f64 / n as f64)).collect();
+        let matrix = |q| HarmonicCompliance::of(problem.body, q, problem.poisson);
+        let coupling_op = GridCompliance::scaled(n, |q| Ok(matrix(q)?.coupling))?;
         Ok(Self {
             law: problem.law,
             coupling: problem.coupling,
-            beta: dundurs_beta(problem.poisson),
             depth,
-            k_op: GridCompliance::on(n, problem.body)?,
+            normal_op: GridCompliance::scaled(n, |q| Ok(matrix(q)?.normal))?,
+            tangential_op: GridCompliance::scaled(n, |q| Ok(matrix(q)?.tangential))?,
+            coupled: !coupling_op.is_zero(),
+            coupling_op,
             tol: problem.tol,
             tol_abs: problem.tol * profile.amplitude_sum(),
             full_contact: super::full_contact_pressure_on(&profile, problem.body)?,
@@ -235,17 +242,17 @@ impl FrictionalContact {
         let max_iterations = super::max_iterations(n);
         let mut change = f64::INFINITY;
         for pass in 1..=MAX_PASSES {
-            if self.coupling == NormalCoupling::Full && self.beta != 0.0 {
-                self.k_op.apply_hilbert(&q, &mut scratch);
+            if self.coupling == NormalCoupling::Full && self.coupled {
+                self.coupling_op.apply_hilbert(&q, &mut scratch);
                 for ((si, &di), &hi) in shifted.iter_mut().zip(&self.depth).zip(&scratch) {
-                    *si = di + self.beta * hi;
+                    *si = di + hi;
                 }
             }
             let normal = polonsky_keer::solve(
                 Some(p),
                 &shifted,
                 p_over_estar,
-                &mut self.k_op,
+                &mut self.normal_op,
                 self.tol_abs,
                 max_iterations,
             )
@@ -256,17 +263,18 @@ impl FrictionalContact {
                 .iter()
                 .map(|&pi| self.law.threshold(pi))
                 .collect();
-            self.k_op.apply_hilbert(&normal.pressure, &mut scratch);
+            self.coupling_op
+                .apply_hilbert(&normal.pressure, &mut scratch);
             let b: Vec<f64> = scratch
                 .iter()
                 .zip(&self.committed.tangential_displacement_over_lambda)
-                .map(|(&hp, &u0)| -self.beta * hp - u0)
+                .map(|(&hp, &u0)| -hp - u0)
                 .collect();
             let shear = shear_active_set::solve(
                 q.clone(),
                 &b,
                 &bound,
-                &mut self.k_op,
+                &mut self.tangential_op,
                 self.tol_abs,
                 max_iterations,
             )
@@ -279,8 +287,8 @@ impl FrictionalContact {
             q = shear.shear;
             p = normal.pressure;
             let settled = self.coupling == NormalCoupling::Goodman
-                || self.beta == 0.0
-                || change * self.k_op.diagonal() <= self.tol_abs;
+                || !self.coupled
+                || change * self.tangential_op.diagonal() <= self.tol_abs;
             if settled {
                 let fields = Fields {
                     pressure: p,
@@ -294,7 +302,7 @@ impl FrictionalContact {
         }
         Err(stalled(Stalled {
             iterations: MAX_PASSES,
-            residual: change * self.k_op.diagonal() / self.tol_abs,
+            residual: change * self.tangential_op.diagonal() / self.tol_abs,
             reason: "the normal–tangential alternation did not settle",
         }))
     }
@@ -417,11 +425,10 @@ fn check_inputs(problem: &FrictionalProblem, profile: &Profile) -> Result<(), Be
     if !(tol.is_finite() && tol > 0.0 && tol < 1.0) {
         return invalid("relative tolerance", tol, "0 < tol < 1");
     }
-    if problem.body != ElasticBody::HalfPlane && problem.law.admits_friction() {
-        return Err(BemError::FrictionOnLayer {
-            friction_coefficient: mu,
-            tau_max_over_estar: tau,
-        });
+    if let ElasticBody::Layer { poisson, .. } = problem.body {
+        if poisson != nu {
+            return invalid("Poisson ratio ν of the layer", poisson, "the problem's ν");
+        }
     }
     super::check_grid(profile, problem.points_per_wavelength)
 }

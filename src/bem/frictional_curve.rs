@@ -87,6 +87,31 @@ impl FrictionalCurve {
     }
 }
 
+/// The curve of `problem` through given mean pressures (p̄/E*, each `> 0`): `loading` then
+/// `unloading`, every increment committed, so that the slip history is that of another solver's
+/// load path (the finite elements' node events, for instance) and both solve the same
+/// backward-Euler problem of friction.
+pub fn follow_pressures(
+    problem: &FrictionalProblem,
+    loading: &[f64],
+    unloading: &[f64],
+) -> Result<FrictionalCurve, BemError> {
+    let mut contact = FrictionalContact::new(problem)?;
+    let mut branch = |pressures: &[f64]| -> Result<Vec<Increment>, BemError> {
+        pressures
+            .iter()
+            .map(|&p| {
+                let inc = contact.increment(p)?;
+                contact.commit(&inc);
+                Ok(inc)
+            })
+            .collect()
+    };
+    let loading = branch(loading)?;
+    let unloading = branch(unloading)?;
+    Ok(FrictionalCurve { loading, unloading })
+}
+
 /// What the curve is asked.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CurveRequest {

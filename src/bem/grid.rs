@@ -31,6 +31,15 @@ impl GridCompliance {
 
     /// The operator of `body` for `n` points (`n ≥ 2`).
     pub(super) fn on(n: usize, body: ElasticBody) -> Result<Self, BemError> {
+        Self::scaled(n, |q| body.over_half_plane(q))
+    }
+
+    /// The half-plane's operator with each harmonic scaled by `ratio(q)` (`q` in 1/λ): a body's
+    /// compliance over the half-plane's, or one entry of its [`super::HarmonicCompliance`].
+    pub(super) fn scaled(
+        n: usize,
+        ratio: impl Fn(f64) -> Result<f64, BemError>,
+    ) -> Result<Self, BemError> {
         let mut planner = FftPlanner::new();
         let forward = planner.plan_fft_forward(n);
         let inverse = planner.plan_fft_inverse(n);
@@ -39,7 +48,7 @@ impl GridCompliance {
                 0 => Ok(0.0),
                 m => {
                     let q = std::f64::consts::TAU * m as f64;
-                    Ok(body.over_half_plane(q)? * half_plane(q) / n as f64)
+                    Ok(ratio(q)? * half_plane(q) / n as f64)
                 }
             })
             .collect::<Result<Vec<f64>, BemError>>()?;
@@ -60,6 +69,11 @@ impl GridCompliance {
         self.weights.iter().sum()
     }
 
+    /// Whether the operator is zero (every harmonic's weight 0).
+    pub(super) fn is_zero(&self) -> bool {
+        self.weights.iter().all(|&w| w == 0.0)
+    }
+
     /// `out = K p`.
     pub(super) fn apply(&mut self, p: &[f64], out: &mut [f64]) {
         self.transform(p, out, |b, _, w| *b *= w);
@@ -68,7 +82,8 @@ impl GridCompliance {
     /// `out = K H v`: each harmonic of `v` scaled by the compliance and by the Hilbert
     /// transform's symbol `−i sign(k)` (`H cos = sin`, `H sin = −cos`; `(H v)(x) = (1/π) PV∫
     /// v(s)/(x − s) ds` on the period), the Nyquist harmonic dropped (its sine vanishes on the
-    /// grid). The half-plane's normal–tangential coupling is `β` times this ([`super::frictional_contact`]).
+    /// grid). Built with a body's coupling ratio, this is its normal–tangential coupling
+    /// ([`super::frictional_contact`]).
     pub(super) fn apply_hilbert(&mut self, v: &[f64], out: &mut [f64]) {
         let n = self.weights.len();
         self.transform(v, out, |b, k, w| {

@@ -52,8 +52,8 @@ mod shear_active_set;
 mod solver_tests;
 
 pub use compliance::{
-    half_plane_compliance, layer_compliance, layer_compliance_deficit, layer_to_half_plane_ratio,
-    ElasticBody,
+    dundurs_beta, half_plane_compliance, layer_compliance, layer_compliance_deficit,
+    layer_to_half_plane_ratio, ElasticBody, HarmonicCompliance,
 };
 
 use crate::profile::{Profile, ProfileError};
@@ -93,12 +93,6 @@ pub enum BemError {
         p_over_estar: f64,
         /// Where full contact starts ([`full_contact_pressure`]).
         full_contact: f64,
-    },
-    /// Friction asked of a layer, whose normal–tangential coupling the solver does not model.
-    #[error("boundary-element solver: friction (μ = {friction_coefficient}, τ_max/E* = {tau_max_over_estar}) is modelled on the half-plane only; a layer is solved frictionless")]
-    FrictionOnLayer {
-        friction_coefficient: f64,
-        tau_max_over_estar: f64,
     },
     /// A load curve's target not reached by its increments.
     #[error("boundary-element solver: the load curve stops short of its target {target} (reached {reached} after {increments} increments)")]

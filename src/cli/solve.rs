@@ -57,8 +57,8 @@ pub struct SolveArgs {
     #[arg(long, value_parser = one_of::<Kinematics>(Kinematics::ALL.map(Kinematics::name)))]
     pub kinematics: Option<Kinematics>,
     /// `fe`: the finite-element solver (a layer on a rigid base, finite or linear kinematics);
-    /// `bem`: the boundary-element solver (linear kinematics; the layer frictionless, or the
-    /// half-plane with --half-plane, with friction; docs/verification.md, "Frictional
+    /// `bem`: the boundary-element solver (linear kinematics; the layer, or the half-plane with
+    /// --half-plane, with Coulomb–Orowan friction; docs/verification.md, "Frictional
     /// boundary elements"). The columns are the same; with bem, slab_displacement_over_lambda
     /// holds the rigid approach δ/λ, newton_iterations the normal–tangential passes, and
     /// active_nodes the contact grid points on [0, λ/2]; with --unload, the loop's work ∮ p̄ dδ
@@ -74,8 +74,7 @@ pub struct SolveArgs {
     /// [default: 40]
     #[arg(long)]
     pub points: Option<usize>,
-    /// With --solver bem: the half-plane instead of the layer of --thickness-over-lambda
-    /// (needed for friction).
+    /// With --solver bem: the half-plane instead of the layer of --thickness-over-lambda.
     #[arg(long)]
     pub half_plane: bool,
     /// Mesh: coarse (32×16 elements), default (48×24), fine (72×36), or N elements along the

@@ -598,10 +598,6 @@ fn solve_with_the_boundary_element_solver() {
     );
     for (args, says) in [
         (
-            vec!["--ar", "0.1", "--tau-max-mpa", "0.1"],
-            "modelled on the half-plane only",
-        ),
-        (
             vec!["--ar", "0.1", "--kinematics", "finite"],
             "small-strain",
         ),

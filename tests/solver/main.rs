@@ -17,6 +17,7 @@ mod fe_reach;
 mod fe_small_ar;
 mod fe_tangent;
 mod fe_westergaard;
+mod friction_fe_vs_bem;
 mod stick_zone;
 mod two_scale_linear;
 mod vtk;

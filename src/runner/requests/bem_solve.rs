@@ -1,5 +1,5 @@
 //! `wavy solve --solver bem`: the request checked for what the boundary-element solver models
-//! (small strain; friction on the half-plane, a layer without friction), the frictional
+//! (small strain, on the half-plane or the layer), the frictional
 //! curve solved ([`crate::bem::frictional_curve`]) and its increments as the rows of a solve,
 //! with the loop's energy both ways.
 
@@ -85,13 +85,6 @@ impl SolveRequest {
                 poisson,
             }
         };
-        if law.admits_friction() && !self.half_plane {
-            return Err(refused(
-                "--tau-max-mpa",
-                self.tau_max_mpa,
-                "friction in the boundary-element solver is modelled on the half-plane only: add --half-plane, or solve the layer frictionless (--tau-max-mpa 0)",
-            ));
-        }
         let grid_points = self
             .grid_points
             .unwrap_or_else(|| default_grid_points(&profile));
