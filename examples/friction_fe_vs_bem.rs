@@ -7,8 +7,9 @@
 //! boundary-element loading in many small steps gives the path's own step error. μ 0 is the
 //! frictionless baseline of the same comparison. One markdown table row per case and mesh.
 //!
-//! `cargo run --release --example friction_fe_vs_bem [-- H N1,N2,..]`: the layer thickness h/λ
-//! (default 0.25) and the FE meshes (face elements, default 48,96,192). The cases run on all
+//! `cargo run --release --example friction_fe_vs_bem [-- H N1,N2,.. [KAPPA_OVER_G]]`: the layer
+//! thickness h/λ (default 0.25), the FE meshes (face elements, default 48,96,192) and the layer's
+//! κ/G (default 2.1667, ν 0.3). The cases run on all
 //! cores; about 16 minutes on two at the defaults.
 
 use rayon::prelude::*;
@@ -161,11 +162,12 @@ fn main() {
     let meshes: Vec<usize> = args.get(1).map_or(vec![48, 96, 192], |s| {
         s.split(',').map(|m| m.parse().expect("mesh")).collect()
     });
+    let kappa_over_g: f64 = args.get(2).map_or(2.1667, |s| s.parse().expect("κ/G"));
     let mut cases = vec![];
     for ar in [0.001, 0.01] {
         let case = |mu, tau_max_over_estar| Case {
             ar,
-            kappa_over_g: 2.1667,
+            kappa_over_g,
             mu,
             tau_max_over_estar,
         };
@@ -197,7 +199,7 @@ fn main() {
             false => f64::NAN,
         })
         .collect();
-    println!("h/λ {thickness}, κ/G 2.1667 (ν 0.3), linear kinematics, exact stick, to a/λ 0.3; BEM N {GRID} on the FE's load path");
+    println!("h/λ {thickness}, κ/G {kappa_over_g} (ν {:.3}), linear kinematics, exact stick, to a/λ 0.3; BEM N {GRID} on the FE's load path", wavy::fe::poisson_ratio(kappa_over_g));
     println!();
     println!("| AR | μ | τ_max/E* | mesh | points | max \\|a_FE/a_BEM − 1\\| (a/λ ≥ {FROM_A}) | max \\|c_FE − c_BEM\\| (edge elements) | c/a FE | c/a BEM | c/a BEM, {FINE_STEPS} steps | loop's face work FE / BEM − 1 |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|");

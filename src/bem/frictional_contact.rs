@@ -81,7 +81,7 @@ impl InterfaceLaw {
     }
 }
 
-/// A frictional problem on the half-plane.
+/// A frictional problem on the half-plane or a layer.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FrictionalProblem<'a> {
     pub profile: &'a Profile,
