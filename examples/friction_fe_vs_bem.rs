@@ -59,7 +59,11 @@ struct Comparison {
 }
 
 /// The FE's loop: its loading points and its unloading points.
-fn fe_loop(case: Case, thickness: f64, nx: usize) -> (Vec<CurvePoint>, Vec<CurvePoint>) {
+fn fe_loop(
+    case: Case,
+    thickness: f64,
+    nx: usize,
+) -> Result<(Vec<CurvePoint>, Vec<CurvePoint>), String> {
     let problem = LayerProblem {
         thickness_over_lambda: thickness,
         kappa_over_g: case.kappa_over_g,
@@ -80,8 +84,8 @@ fn fe_loop(case: Case, thickness: f64, nx: usize) -> (Vec<CurvePoint>, Vec<Curve
     let curve = solve_cycle(&problem, &opts, &mut |_: LoadDirection, _: &CurvePoint| {
         ControlFlow::Continue(())
     })
-    .expect("FE loop");
-    (curve.points, curve.unloading)
+    .map_err(|failure| format!("FE: {}", failure.error))?;
+    Ok((curve.points, curve.unloading))
 }
 
 /// The boundary elements on the same layer and law through `loading` then `unloading` (p̄/E*).
@@ -91,7 +95,7 @@ fn bem_curve(
     profile: &Profile,
     loading: &[f64],
     unloading: &[f64],
-) -> FrictionalCurve {
+) -> Result<FrictionalCurve, String> {
     let poisson = wavy::fe::poisson_ratio(case.kappa_over_g);
     let problem = FrictionalProblem {
         profile,
@@ -105,11 +109,11 @@ fn bem_curve(
         points_per_wavelength: GRID,
         tol: TOL,
     };
-    follow_pressures(&problem, loading, unloading).expect("BEM curve")
+    follow_pressures(&problem, loading, unloading).map_err(|e| format!("BEM: {e}"))
 }
 
-fn compare(case: Case, thickness: f64, nx: usize) -> Comparison {
-    let (fe, fe_unloading) = fe_loop(case, thickness, nx);
+fn compare(case: Case, thickness: f64, nx: usize) -> Result<Comparison, String> {
+    let (fe, fe_unloading) = fe_loop(case, thickness, nx)?;
     let profile = Profile::sinusoid(case.ar);
     let pressures: Vec<f64> = fe.iter().map(|p| p.p_over_estar).collect();
     let unloading_pressures: Vec<f64> = fe_unloading
@@ -117,7 +121,7 @@ fn compare(case: Case, thickness: f64, nx: usize) -> Comparison {
         .map(|p| p.p_over_estar)
         .filter(|&p| p > 0.0)
         .collect();
-    let curve = bem_curve(case, thickness, &profile, &pressures, &unloading_pressures);
+    let curve = bem_curve(case, thickness, &profile, &pressures, &unloading_pressures)?;
     let bem = &curve.loading;
     let mut a_error = 0.0f64;
     let mut stick_error_elements = 0.0f64;
@@ -132,7 +136,7 @@ fn compare(case: Case, thickness: f64, nx: usize) -> Comparison {
         stick_error_elements = stick_error_elements.max(dc / element);
     }
     let (last_fe, last_bem) = (fe.last().unwrap(), bem.last().unwrap());
-    Comparison {
+    Ok(Comparison {
         points: fe.len(),
         p_over_estar: last_fe.p_over_estar,
         dissipation_fe: cycle_friction_work_over_estar_lambda2(&fe_unloading),
@@ -141,19 +145,24 @@ fn compare(case: Case, thickness: f64, nx: usize) -> Comparison {
         stick_error_elements,
         stick_ratio_fe: last_fe.stick_half_width_over_lambda / last_fe.a_over_lambda,
         stick_ratio_bem: last_bem.stick_half_width_over_lambda / outermost_edge(last_bem),
-    }
+    })
 }
 
 /// The boundary elements' c/a at the end of `steps` even steps of `√p̄` (about even steps of a
 /// on a crest) up to `p_over_estar`: the load path's own step error, against the FE's path.
-fn stick_ratio_in_steps(case: Case, thickness: f64, p_over_estar: f64, steps: usize) -> f64 {
+fn stick_ratio_in_steps(
+    case: Case,
+    thickness: f64,
+    p_over_estar: f64,
+    steps: usize,
+) -> Result<f64, String> {
     let profile = Profile::sinusoid(case.ar);
     let pressures: Vec<f64> = (1..=steps)
         .map(|j| p_over_estar * (j as f64 / steps as f64).powi(2))
         .collect();
-    let curve = bem_curve(case, thickness, &profile, &pressures, &[]);
+    let curve = bem_curve(case, thickness, &profile, &pressures, &[])?;
     let last = curve.loading.last().unwrap();
-    last.stick_half_width_over_lambda / outermost_edge(last)
+    Ok(last.stick_half_width_over_lambda / outermost_edge(last))
 }
 
 fn main() {
@@ -184,19 +193,23 @@ fn main() {
         .iter()
         .flat_map(|&c| meshes.iter().map(move |&m| (c, m)))
         .collect();
-    let results: Vec<Comparison> = runs
+    let results: Vec<Result<Comparison, String>> = runs
         .par_iter()
         .map(|&(c, m)| compare(c, thickness, m))
         .collect();
-    let fine: Vec<f64> = cases
+    let fine: Vec<String> = cases
         .par_iter()
         .enumerate()
-        .map(|(k, &c)| match c.mu > 0.0 {
-            true => {
-                let last = &results[(k + 1) * meshes.len() - 1];
-                stick_ratio_in_steps(c, thickness, last.p_over_estar, FINE_STEPS)
+        .map(|(k, &c)| {
+            // to the last load of the finest mesh that completed
+            let ran = &results[k * meshes.len()..(k + 1) * meshes.len()];
+            match (c.mu > 0.0, ran.iter().rev().find_map(|r| r.as_ref().ok())) {
+                (true, Some(last)) => {
+                    stick_ratio_in_steps(c, thickness, last.p_over_estar, FINE_STEPS)
+                        .map_or_else(|e| e, |r| format!("{r:.4}"))
+                }
+                _ => "–".into(),
             }
-            false => f64::NAN,
         })
         .collect();
     println!("h/λ {thickness}, κ/G {kappa_over_g} (ν {:.3}), linear kinematics, exact stick, to a/λ 0.3; BEM N {GRID} on the FE's load path", wavy::fe::poisson_ratio(kappa_over_g));
@@ -204,6 +217,16 @@ fn main() {
     println!("| AR | μ | τ_max/E* | mesh | points | max \\|a_FE/a_BEM − 1\\| (a/λ ≥ {FROM_A}) | max \\|c_FE − c_BEM\\| (edge elements) | c/a FE | c/a BEM | c/a BEM, {FINE_STEPS} steps | loop's face work FE / BEM − 1 |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for (((c, m), r), k) in runs.iter().zip(&results).zip(0..) {
+        let r = match r {
+            Ok(r) => r,
+            Err(e) => {
+                println!(
+                    "| {} | {} | {} | {m} | failed: {e} |||||||",
+                    c.ar, c.mu, c.tau_max_over_estar
+                );
+                continue;
+            }
+        };
         let frictional = |text: String| if c.mu > 0.0 { text } else { "–".into() };
         println!(
             "| {} | {} | {} | {m} | {} | {:.2e} | {} | {} | {} | {} | {} |",
@@ -215,7 +238,7 @@ fn main() {
             frictional(format!("{:.2}", r.stick_error_elements)),
             frictional(format!("{:.4}", r.stick_ratio_fe)),
             frictional(format!("{:.4}", r.stick_ratio_bem)),
-            frictional(format!("{:.4}", fine[k / meshes.len()])),
+            frictional(fine[k / meshes.len()].clone()),
             frictional(format!(
                 "{:+.2} %",
                 100.0 * (r.dissipation_fe / r.dissipation_bem - 1.0)

@@ -8,7 +8,8 @@
 //! configurations (`J ≤ 0`) are backtracked. Convergence: `‖r‖∞ ≤ rtol · f_e + atol`, `f_e`
 //! the largest element-level nodal force (the round-off scale of the assembled residual) and
 //! `atol = residual_atol · (G + κ) λ`; an iteration whose correction is below
-//! `increment_atol` (round-off of the positions) also ends the iteration, and so does one whose
+//! `increment_atol` (round-off of the positions) on pieces of the friction law that the state
+//! obeys also ends the iteration, and so does one whose
 //! correction is below [`ROUND_OFF_INCREMENT`] when the last step no longer halved the residual:
 //! the residual has reached the round-off floor of the mesh ([`at_round_off_floor`]).
 
@@ -212,9 +213,13 @@ pub(crate) fn newton(
         let same_pieces = held
             .as_deref()
             .is_none_or(|h| h.iter().all(|&(k, b)| st.slip[k].held == b));
-        if last_step <= opts.newton.increment_atol && same_pieces {
+        if last_step <= opts.newton.increment_atol
+            && same_pieces
+            && f.friction_complementarity <= tol
+        {
             // correction below the round-off of the positions, on the same pieces of the
-            // friction law: converged
+            // friction law, and those pieces obeyed: converged (a state whose sliding nodes
+            // slide against their force is not, however small the step that keeps it)
             *st = stepped(model, 1.0);
             return Ok(it + 1);
         }
