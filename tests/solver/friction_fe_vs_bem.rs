@@ -23,10 +23,10 @@ const MU: f64 = 0.5;
 /// loop then dissipates by slip, not only through its steps.
 const TAU_CAP: f64 = 1e-4;
 
-fn fe_loop((mu, tau): (f64, f64), nx: usize) -> Curve {
+fn fe_loop(kappa_over_g: f64, (mu, tau): (f64, f64), nx: usize) -> Curve {
     let problem = LayerProblem {
         thickness_over_lambda: THICKNESS,
-        kappa_over_g: KAPPA_OVER_G,
+        kappa_over_g,
         kinematics: Kinematics::Linear,
         interface: Interface::coulomb_orowan(mu, tau, 0.0),
         ..wavy::defaults::layer_problem(AR)
@@ -42,9 +42,9 @@ fn fe_loop((mu, tau): (f64, f64), nx: usize) -> Curve {
     .expect("FE loop")
 }
 
-fn bem_along((mu, tau): (f64, f64), fe: &Curve, grid: usize) -> FrictionalCurve {
+fn bem_along(kappa_over_g: f64, (mu, tau): (f64, f64), fe: &Curve, grid: usize) -> FrictionalCurve {
     let profile = Profile::sinusoid(AR);
-    let poisson = wavy::fe::poisson_ratio(KAPPA_OVER_G);
+    let poisson = wavy::fe::poisson_ratio(kappa_over_g);
     let problem = FrictionalProblem {
         profile: &profile,
         body: ElasticBody::Layer {
@@ -100,8 +100,8 @@ struct Measured {
 
 fn measure(nx: usize, grid: usize) -> Measured {
     let along = |law: (f64, f64)| {
-        let fe = fe_loop(law, nx);
-        let bem = bem_along(law, &fe, grid);
+        let fe = fe_loop(KAPPA_OVER_G, law, nx);
+        let bem = bem_along(KAPPA_OVER_G, law, &fe, grid);
         (fe, bem)
     };
     let (fe, bem) = along((0.0, 0.0));
@@ -150,22 +150,8 @@ fn fe_friction_follows_the_boundary_elements_on_the_same_path() {
 /// 0.971 of the boundary elements' (asserted within 5 %).
 #[test]
 fn unloading_a_slipping_layer_sticks_first_and_dissipates() {
-    let problem = LayerProblem {
-        thickness_over_lambda: THICKNESS,
-        kappa_over_g: 9.667,
-        kinematics: Kinematics::Linear,
-        interface: Interface::coulomb_orowan(MU, TAU_CAP, 0.0),
-        ..wavy::defaults::layer_problem(AR)
-    };
-    let opts = SolveOptions {
-        mesh: MeshLevel::Elements { nx: 32, ny: 8 },
-        until_a_over_lambda: 0.3,
-        ..Default::default()
-    };
-    let fe = solve_cycle(&problem, &opts, &mut |_: LoadDirection, _: &CurvePoint| {
-        ControlFlow::Continue(())
-    })
-    .expect("FE loop");
+    let (kappa_over_g, law) = (9.667, (MU, TAU_CAP));
+    let fe = fe_loop(kappa_over_g, law, 32);
     let loaded = fe.points.last().unwrap().friction_work_over_estar_lambda2;
     let mut work = loaded;
     for p in &fe.unloading {
@@ -176,32 +162,7 @@ fn unloading_a_slipping_layer_sticks_first_and_dissipates() {
         );
         work = w;
     }
-    let profile = Profile::sinusoid(AR);
-    let poisson = wavy::fe::poisson_ratio(9.667);
-    let bem = follow_pressures(
-        &FrictionalProblem {
-            profile: &profile,
-            body: ElasticBody::Layer {
-                thickness: THICKNESS,
-                poisson,
-            },
-            poisson,
-            law: InterfaceLaw {
-                friction_coefficient: MU,
-                tau_max_over_estar: TAU_CAP,
-            },
-            coupling: NormalCoupling::Full,
-            points_per_wavelength: 2048,
-            tol: 1e-10,
-        },
-        &fe.points.iter().map(|p| p.p_over_estar).collect::<Vec<_>>(),
-        &fe.unloading
-            .iter()
-            .map(|p| p.p_over_estar)
-            .filter(|&p| p > 0.0)
-            .collect::<Vec<_>>(),
-    )
-    .expect("BEM curve");
+    let bem = bem_along(kappa_over_g, law, &fe, 2048);
     let ratio = work / bem.face_dissipation_over_estar_lambda2();
     eprintln!("loop's face work FE / BEM = {ratio}");
     assert!((ratio - 1.0).abs() < 0.05, "FE / BEM face work {ratio}");
