@@ -162,8 +162,6 @@ pub struct FrictionalContact {
     normal_op: GridCompliance,
     tangential_op: GridCompliance,
     coupling_op: GridCompliance,
-    /// Whether `K_c` is nonzero (the two problems talk to each other).
-    coupled: bool,
     /// The relative tolerance and the absolute one it gives gaps and slips (`tol · Σ Δ_k`, λ).
     tol: f64,
     tol_abs: f64,
@@ -186,7 +184,6 @@ impl FrictionalContact {
             depth,
             normal_op: GridCompliance::scaled(n, |q| Ok(matrix(q)?.normal))?,
             tangential_op: GridCompliance::scaled(n, |q| Ok(matrix(q)?.tangential))?,
-            coupled: !coupling_op.is_zero(),
             coupling_op,
             tol: problem.tol,
             tol_abs: problem.tol * profile.amplitude_sum(),
@@ -242,7 +239,7 @@ impl FrictionalContact {
         let max_iterations = super::max_iterations(n);
         let mut change = f64::INFINITY;
         for pass in 1..=MAX_PASSES {
-            if self.coupling == NormalCoupling::Full && self.coupled {
+            if self.coupling == NormalCoupling::Full && !self.coupling_op.is_zero() {
                 self.coupling_op.apply_hilbert(&q, &mut scratch);
                 for ((si, &di), &hi) in shifted.iter_mut().zip(&self.depth).zip(&scratch) {
                     *si = di + hi;
@@ -287,7 +284,7 @@ impl FrictionalContact {
             q = shear.shear;
             p = normal.pressure;
             let settled = self.coupling == NormalCoupling::Goodman
-                || !self.coupled
+                || self.coupling_op.is_zero()
                 || change * self.tangential_op.diagonal() <= self.tol_abs;
             if settled {
                 let fields = Fields {
