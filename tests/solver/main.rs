@@ -12,6 +12,7 @@ mod fe_friction;
 mod fe_hysteresis;
 mod fe_inputs;
 mod fe_locking;
+mod fe_newton;
 mod fe_profiles;
 mod fe_reach;
 mod fe_small_ar;

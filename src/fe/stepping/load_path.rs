@@ -16,6 +16,7 @@ use crate::fe::contact::measure::{deformed_state, peak_x, Measured};
 use crate::fe::error::{CurveFailure, SolveError};
 use crate::fe::model::{Model, State};
 use crate::fe::newton::assembly::Assembly;
+use crate::fe::stepping::predictor::LoadTangent;
 use crate::fe::stepping::step_state::Converged;
 use crate::fe::{Curve, CurvePoint, SolveOptions};
 
@@ -58,6 +59,9 @@ pub(crate) struct LoadPath {
     pub(crate) grad: Vec<f64>,
     /// The contact-face node the last event released, if it was a release.
     pub(crate) released: Option<usize>,
+    /// The path's third-order term that the last step measured, for the next step's predictor
+    /// ([`crate::fe::stepping::predictor::third_order_term`]).
+    pub(crate) third_order: Option<Vec<[f64; 2]>>,
     /// A profile's edge placement by the load (`None` for a sinusoid).
     tracks: Option<EdgeTracks>,
     /// The points the step callback has not seen yet, in order.
@@ -78,9 +82,16 @@ impl LoadPath {
             patch_edges: Vec::new(),
             grad: vec![0.0; 2 * model.num_nodes()],
             released: None,
+            third_order: None,
             tracks: profile.then(|| EdgeTracks::new(model.mesh.bottom.len())),
             held: VecDeque::new(),
         }
+    }
+
+    /// The load tangent of the last converged state with the third-order term its step measured
+    /// (the predictor's, [`crate::fe::stepping::predictor::predictor`]).
+    pub(crate) fn with_third_order(&self, tangent: Option<LoadTangent>) -> Option<LoadTangent> {
+        tangent.map(|z| z.with_third_order(self.third_order.clone()))
     }
 
     /// Nodes of the last converged state found touching and brought into contact before the next

@@ -23,7 +23,9 @@ use crate::fe::stepping::load_path::{LoadPath, OnStep};
 use crate::fe::stepping::node_events::{
     activate_touching_anywhere, earliest_touchdown, passed_touchdowns,
 };
-use crate::fe::stepping::predictor::{displacement_step, tangent_at, LoadTangent};
+use crate::fe::stepping::predictor::{
+    displacement_step, tangent_at, third_order_term, LoadTangent,
+};
 use crate::fe::stepping::pressure_target::{land_on_pressure, Overshoot, PRESSURE_TARGET_RTOL};
 use crate::fe::stepping::release_events::{first_release, ReleaseSearch};
 use crate::fe::{Curve, SolveOptions};
@@ -114,7 +116,9 @@ pub(crate) fn loading_branch(
             measured,
             extrapolated,
             released,
+            third_order,
         } = point;
+        path.third_order = third_order;
         if let Err(error) = path.record(model, state, measured, (extrapolated, released), on_step) {
             return Err(path.fail(model, error, on_step));
         }
@@ -316,12 +320,14 @@ struct SettledEvent {
 }
 
 /// The point a load step adds to the curve: its state (slip committed), what was measured
-/// there, the tangent's predicted increment and the node a release event let go.
+/// there, the tangent's predicted increment, the node a release event let go, and the path's
+/// third-order term measured on the step (none for a release or a landing).
 struct EventPoint {
     state: State,
     measured: Measured,
     extrapolated: Option<f64>,
     released: Option<usize>,
+    third_order: Option<Vec<[f64; 2]>>,
 }
 
 impl Branch<'_> {
@@ -336,8 +342,12 @@ impl Branch<'_> {
         tangent: Option<LoadTangent>,
         step: usize,
     ) -> Result<(EventPoint, bool), SolveError> {
+        let step_path = tangent.clone();
         let found = self.find_event(asm, path, k, tangent, step)?;
         let mut settled = self.settle_event(asm, path, found, step)?;
+        let third_order = (step_path.as_ref())
+            .filter(|_| settled.released.is_none())
+            .and_then(|z| third_order_term(self.model, &path.cur, z, &settled.state));
         let measured = self.measure_event(asm, &mut settled);
         let overshot = self
             .opts
@@ -348,6 +358,7 @@ impl Branch<'_> {
             measured,
             extrapolated: settled.extrapolated,
             released: settled.released,
+            third_order,
         };
         match overshot {
             None => Ok((point, false)),
@@ -370,6 +381,7 @@ impl Branch<'_> {
                     measured,
                     extrapolated: None,
                     released: point.released,
+                    third_order: None,
                 };
                 Ok((landed, true))
             }
@@ -392,12 +404,13 @@ impl Branch<'_> {
                 path.touching_before_step();
                 let tangent = tangent_at(model, asm, opts, &path.cur);
                 let k = earliest_touchdown(model, &path.cur, tangent.as_deref())?;
-                Some((k, tangent))
+                Some((k, path.with_third_order(tangent)))
             }
             Events::EdgeByEdge => {
                 let k = next_target(model, &path.cur, path.a, opts.steps.da_target)?;
                 activate_touching(model, &mut path.cur, k);
-                Some((k, tangent_at(model, asm, opts, &path.cur)))
+                let tangent = tangent_at(model, asm, opts, &path.cur);
+                Some((k, path.with_third_order(tangent)))
             }
         }
     }
