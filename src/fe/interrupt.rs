@@ -65,19 +65,9 @@ mod tests {
 
     #[test]
     fn a_solve_watching_a_set_flag_fails_at_its_first_newton_iteration() {
-        use crate::fe::{self, Interface, Kinematics, LayerProblem, MeshLevel, SolveOptions};
-        let problem = LayerProblem {
-            aspect_ratio: 0.1,
-            finer_harmonics: crate::profile::FinerHarmonics::NONE,
-            thickness_over_lambda: 1.0,
-            kappa_over_g: 1000.0,
-            kinematics: Kinematics::Finite,
-            interface: Interface::Frictionless,
-        };
-        let options = SolveOptions {
-            mesh: MeshLevel::Coarse,
-            ..SolveOptions::default()
-        };
+        use crate::fe::test_problems::coarse_sinusoid;
+        use crate::fe::{self, Interface};
+        let (problem, options) = coarse_sinusoid(0.1, Interface::Frictionless);
         let mut steps = 0;
         let failure = watching(Arc::new(AtomicBool::new(true)), || {
             fe::solve_curve(&problem, &options, &mut |_| {

@@ -56,6 +56,8 @@ pub mod newton;
 pub mod options;
 pub mod shear_test;
 pub mod stepping;
+#[cfg(test)]
+pub(crate) mod test_problems;
 
 pub use contact::edge_rule::{EdgeRule, DISCRETE_EDGE_FRACTION, EDGE_FRACTION_BY_ASPECT};
 pub use contact::friction::{Branch, CoulombOrowan, Interface};

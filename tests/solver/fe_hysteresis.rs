@@ -53,8 +53,8 @@ fn peak(c: &Curve) -> f64 {
     c.points.last().expect("a loading point").p_over_estar
 }
 
-/// Every cycle starts where loading ended, ends at zero load, and never pulls (p̄ ≥ 0: the
-/// interface is adhesionless).
+/// Every cycle starts where loading ended, ends at zero load with no contact (a/λ 0: no face
+/// force above the Newton tolerance), and never pulls (p̄ ≥ 0: the interface is adhesionless).
 fn check_branches(c: &Curve, what: &str) {
     let p_max = peak(c);
     let last = c.unloading.last().expect("an unloading point");
@@ -64,6 +64,7 @@ fn check_branches(c: &Curve, what: &str) {
         last.p_over_estar
     );
     assert!(last.slab_displacement_over_lambda <= 0.0);
+    assert_eq!(last.a_over_lambda, 0.0, "{what}: contact left at zero load");
     for p in &c.unloading {
         assert!(
             p.p_over_estar >= -1e-10 * p_max,
@@ -87,8 +88,9 @@ fn assert_closes(w: f64, w_load: f64, what: &str) {
 /// Frictionless: unloading revisits every load of the loading branch, exactly, and finds the
 /// same state there within a bound that shrinks with the Newton tolerance rtol, down to a
 /// round-off floor. Measured at AR 0.3 on the coarse mesh, at rtol 1e-6, 1e-8, 1e-10:
-/// |Δp̄|/p̄_max = 1.9e-8, 2.6e-10, 2.3e-11, asserted ≤ 0.1 rtol + 1e-10 (4 to 5 times the
-/// measured); |W|/W_load = 6.4e-10, 8.5e-11, 2.6e-12, asserted ≤ 0.02 rtol + 1e-11 (31, 2.5 and
+/// |Δp̄|/p̄_max = 2.3e-8, 4.7e-11, 1.0e-11, asserted ≤ 0.1 rtol + 1e-10 (4 to 10 times the
+/// measured); the contact half-width too, |Δa/λ| = 5.9e-9, 1.4e-11, 1.4e-11, asserted
+/// ≤ 0.02 rtol + 1e-10 (3.4 to 22 times; an edge one element off would be 2e-2); |W|/W_load = 6.4e-10, 8.5e-11, 2.6e-12, asserted ≤ 0.02 rtol + 1e-11 (31, 2.5 and
 /// 4.6 times the measured), besides the scene's own bound 1e-6.
 #[test]
 fn frictionless_loop_closes_within_a_bound_that_shrinks_with_the_tolerance() {
@@ -98,7 +100,7 @@ fn frictionless_loop_closes_within_a_bound_that_shrinks_with_the_tolerance() {
         let what = format!("frictionless AR 0.3, rtol {rtol:e}");
         check_branches(&c, &what);
         let p_max = peak(&c);
-        let mut largest = 0.0_f64;
+        let (mut largest, mut largest_da) = (0.0_f64, 0.0_f64);
         for l in &c.points[..c.points.len() - 1] {
             let u = c
                 .unloading
@@ -111,15 +113,20 @@ fn frictionless_loop_closes_within_a_bound_that_shrinks_with_the_tolerance() {
                     )
                 });
             largest = largest.max((u.p_over_estar - l.p_over_estar).abs() / p_max);
+            largest_da = largest_da.max((u.a_over_lambda - l.a_over_lambda).abs());
         }
         let (w, w_load) = works(&c);
         eprintln!(
-            "{what}: largest |Δp̄|/p̄_max {largest:.2e}, W/W_load {:.2e}",
+            "{what}: largest |Δp̄|/p̄_max {largest:.2e}, |Δa/λ| {largest_da:.2e}, W/W_load {:.2e}",
             w / w_load
         );
         assert!(
             largest <= 0.1 * rtol + 1e-10,
             "{what}: |Δp̄|/p̄_max = {largest:e}"
+        );
+        assert!(
+            largest_da <= 0.02 * rtol + 1e-10,
+            "{what}: |Δa/λ| = {largest_da:e}"
         );
         assert!(
             w.abs() <= (0.02 * rtol + 1e-11) * w_load,

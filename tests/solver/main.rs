@@ -19,6 +19,7 @@ mod fe_small_ar;
 mod fe_tangent;
 mod fe_westergaard;
 mod friction_fe_vs_bem;
+mod robustness;
 mod stick_zone;
 mod two_scale_linear;
 mod vtk;

@@ -15,6 +15,9 @@
 use serde::{Deserialize, Serialize};
 
 use crate::fe::model::{Model, State};
+use crate::fe::newton::assembly::Forces;
+use crate::fe::newton::residual_tolerance;
+use crate::fe::SolveOptions;
 
 /// Rule placing the contact edge `a` inside `[x_{k−1}, x_k]` (current positions) at an
 /// edge event on node `k`: node `k` touches with zero force, node `k − 1` carries force
@@ -105,24 +108,37 @@ pub(crate) fn element_aspect(model: &Model, st: &State, i: usize, j: usize) -> f
 /// (< 4.4·10⁻¹⁹ λ) is below one ulp of any `x ≥ 2⁻⁹ λ`: the bisection ends at round-off.
 const GAP_FIT_BISECTIONS: usize = 60;
 
-/// The node that plays the edge event's target in a state that is not an event (the
-/// unloading branch): the node after the last one whose vertical contact multiplier `λ` is
-/// clearly positive (above `multiplier_rtol` times the largest), so that the edge lies in the
-/// last loaded element as at an event. At an event state it is the event's node whether or
-/// not the solve left that node, touching with zero force, active; the peak node 0 when no
-/// node carries load; at most the valley node.
+/// The vertical contact multiplier `λ` above which a face node counts as loaded, given the
+/// multipliers `lam` of every face node and the `force_scale` of the state's assembly
+/// ([`Forces::force_scale`]): `multiplier_rtol` times the largest multiplier, and no less than
+/// the Newton tolerance the state was converged to, below which a force is indistinguishable
+/// from zero (at zero load every multiplier is; unloading through the displacement of a loading
+/// edge event leaves that event's node with a multiplier of the order of the tolerance).
+pub(crate) fn loaded_threshold(
+    model: &Model,
+    lam: &[f64],
+    opts: &SolveOptions,
+    force_scale: f64,
+) -> f64 {
+    let scale = lam.iter().fold(0.0_f64, |m, l| m.max(l.abs()));
+    let tolerance = residual_tolerance(model, opts, opts.newton.residual_rtol, force_scale);
+    (opts.contact.multiplier_rtol * scale).max(tolerance)
+}
+
+/// The node that plays the edge event's target in a converged state that is not an event (the
+/// unloading branch), with internal forces `f`: the node after the last loaded one
+/// ([`loaded_threshold`]), so that the edge lies in the last loaded element as at an event. At
+/// an event state it is the event's node whether or not the solve left that node, touching with
+/// zero force, active; the peak node 0 when no node carries load; at most the valley node.
 pub(crate) fn loaded_edge_node(
     model: &Model,
     st: &State,
-    grad: &[f64],
-    multiplier_rtol: f64,
+    f: &Forces,
+    opts: &SolveOptions,
 ) -> usize {
-    let lam = model.multipliers(st, grad);
-    let scale = lam.iter().fold(0.0_f64, |m, l| m.max(l.abs()));
-    match (0..lam.len())
-        .rev()
-        .find(|&i| lam[i] > multiplier_rtol * scale)
-    {
+    let lam = model.multipliers(st, &f.grad);
+    let threshold = loaded_threshold(model, &lam, opts, f.force_scale);
+    match (0..lam.len()).rev().find(|&i| lam[i] > threshold) {
         Some(i) => (i + 1).min(lam.len() - 1),
         None => 0,
     }
@@ -212,6 +228,52 @@ pub(crate) fn invert_decreasing(r: impl Fn(f64) -> f64, target: f64, lo: f64, hi
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fe::test_problems::coarse_sinusoid;
+    use crate::fe::{build_model, Interface};
+
+    /// The coarse-mesh model of a frictionless sinusoid and its state with every face node
+    /// active, with internal forces whose face multipliers are `lam` (zero elsewhere) and whose
+    /// element forces are of order one.
+    fn state_with_multipliers(lam: impl Fn(usize) -> f64) -> (Model, State, Forces, SolveOptions) {
+        let (problem, opts) = coarse_sinusoid(0.1, Interface::Frictionless);
+        let model = build_model(&problem, &opts);
+        let mut st = model.initial_state();
+        st.active.iter_mut().for_each(|a| *a = true);
+        let mut grad = vec![0.0; 2 * model.num_nodes()];
+        for (k, &n) in model.mesh.bottom.iter().enumerate() {
+            grad[2 * n + 1] = lam(k);
+        }
+        let forces = Forces {
+            energy: 0.0,
+            grad,
+            resid: Vec::new(),
+            dresid_dd: Vec::new(),
+            force_scale: 1.0,
+            friction_complementarity: 0.0,
+        };
+        (model, st, forces, opts)
+    }
+
+    /// Loaded nodes `0 … 4` put the edge node at 5, whether node 5 carries nothing or a force
+    /// within the Newton tolerance (`residual_rtol · 1 + residual_atol · (G + κ)` = 2·10⁻¹⁰
+    /// here), as the node of a loading event does when unloading passes its displacement;
+    /// round-off multipliers of either sign, as at zero load, load no node: the edge node is the
+    /// peak's. A threshold relative to the largest multiplier alone (`multiplier_rtol` 10⁻⁹)
+    /// would count node 5 as loaded in the second case and half the nodes in the third.
+    #[test]
+    fn the_edge_node_follows_the_loaded_nodes_and_ignores_forces_within_the_tolerance() {
+        let loaded = |k: usize| if k < 5 { 1e-2 * (5 - k) as f64 } else { 0.0 };
+        let (model, st, f, opts) = state_with_multipliers(loaded);
+        assert_eq!(loaded_edge_node(&model, &st, &f, &opts), 5);
+        let (model, st, f, opts) =
+            state_with_multipliers(|k| if k == 5 { 1e-10 } else { loaded(k) });
+        assert!(1e-10 > opts.contact.multiplier_rtol * 5e-2);
+        assert_eq!(loaded_edge_node(&model, &st, &f, &opts), 5);
+        let round_off =
+            |k: usize| if k.is_multiple_of(2) { 3e-15 } else { -2e-15 } * (k + 1) as f64;
+        let (model, st, f, opts) = state_with_multipliers(round_off);
+        assert_eq!(loaded_edge_node(&model, &st, &f, &opts), 0);
+    }
 
     /// [`periodic_gap_fit`] inverts the gap ratio of [`periodic_gap_shape`] inside the
     /// interval and clamps outside it.

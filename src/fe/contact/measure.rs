@@ -66,7 +66,7 @@ pub(crate) fn measure(
         EdgeAt::Node(k) => Some(k),
         EdgeAt::OutermostPatch(event) => event,
     };
-    let (patches, travelling) = contact_patches(model, st, &f.grad, opts, event);
+    let (patches, travelling) = contact_patches(model, st, &f, opts, event);
     let stick_runs = stick_runs(model, st, &f.grad);
     let stick = stick_zone(&stick_runs, &patches, peak_x(model, st));
     let a_over_lambda = match edge {
@@ -112,12 +112,7 @@ pub(crate) fn measure_between_events(
         .assemble(model, st, false)
         .expect("converged state is not inverted");
     let edge = if model.indenter.profile.is_sinusoid() {
-        EdgeAt::Node(loaded_edge_node(
-            model,
-            st,
-            &f.grad,
-            opts.contact.multiplier_rtol,
-        ))
+        EdgeAt::Node(loaded_edge_node(model, st, &f, opts))
     } else {
         EdgeAt::OutermostPatch(None)
     };

@@ -2,7 +2,8 @@
 //! each with its two edges placed by the edge rule, and the contact fraction they add up to.
 //!
 //! A node is loaded when its vertical contact multiplier `λ` is clearly positive (above
-//! `multiplier_rtol` times the largest, as [`crate::fe::contact::edge_rule::loaded_edge_node`] reads it),
+//! [`crate::fe::contact::edge_rule::loaded_threshold`], as
+//! [`crate::fe::contact::edge_rule::loaded_edge_node`] reads it),
 //! except the node of an event, which touches with zero force by construction (its force is
 //! the remainder of the event's gap tolerance, far above `multiplier_rtol`).
 //! For a profile with finer harmonics the patches and their edges are those of
@@ -22,29 +23,30 @@
 //! wavelength `[0, ½]` and their mirror images, `2 Σ (end − start)`; `2a/λ` for the single
 //! patch `[0, a]` of a sinusoid.
 
-use crate::fe::contact::edge_rule::edge_position;
+use crate::fe::contact::edge_rule::{edge_position, loaded_threshold};
 use crate::fe::contact::patch_edge::{profile_patches, TravellingEdge};
 use crate::fe::model::{Model, State};
+use crate::fe::newton::assembly::Forces;
 use crate::fe::SolveOptions;
 
-/// The contact patches of `st` (with internal forces `grad`) in `[0, ½]`, in order of `x`,
+/// The contact patches of `st` (with assembled forces `f`) in `[0, ½]`, in order of `x`,
 /// each `[start, end]` (units of λ, current positions), and those of a profile's edges that
 /// travel between their own events ([`TravellingEdge`]; none for a sinusoid); `event` is the
 /// node of the event that produced `st`, if any.
 pub(crate) fn contact_patches(
     model: &Model,
     st: &State,
-    grad: &[f64],
+    f: &Forces,
     opts: &SolveOptions,
     event: Option<usize>,
 ) -> (Vec<[f64; 2]>, Vec<TravellingEdge>) {
     let rule = opts.contact.edge_rule;
-    let lam = model.multipliers(st, grad);
-    let scale = lam.iter().fold(0.0_f64, |m, l| m.max(l.abs()));
+    let lam = model.multipliers(st, &f.grad);
+    let threshold = loaded_threshold(model, &lam, opts, f.force_scale);
     let loaded: Vec<bool> = lam
         .iter()
         .enumerate()
-        .map(|(i, &l)| scale > 0.0 && l > opts.contact.multiplier_rtol * scale && event != Some(i))
+        .map(|(i, &l)| l > threshold && event != Some(i))
         .collect();
     if !model.indenter.profile.is_sinusoid() {
         return profile_patches(model, st, rule, (&lam, &loaded), event, runs(&loaded));

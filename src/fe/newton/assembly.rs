@@ -358,25 +358,16 @@ mod tests {
     use super::*;
     use crate::fe::contact::friction::{Branch, Regime};
     use crate::fe::newton::friction_rows::LawPiece;
-    use crate::fe::{build_model, Interface, LayerProblem, MeshLevel, SolveOptions};
+    use crate::fe::test_problems::coarse_sinusoid;
+    use crate::fe::{build_model, Interface};
 
     /// A pressed, sheared state of the coarse AR 0.3 model under friction coefficient `mu`
     /// and stick regularisation `elastic_slip_over_element` (τ_max/E* = 0.1): the layer
     /// moved down by 0.01 λ, the contact-face nodes that the indenter then pushes up in
     /// contact, moved along it beyond their stick band.
     fn sheared(mu: f64, elastic_slip_over_element: f64) -> (Model, Assembly, State) {
-        let problem = LayerProblem {
-            aspect_ratio: 0.3,
-            finer_harmonics: crate::profile::FinerHarmonics::NONE,
-            thickness_over_lambda: 1.0,
-            kappa_over_g: 1000.0,
-            kinematics: Kinematics::Finite,
-            interface: Interface::coulomb_orowan(mu, 0.1, elastic_slip_over_element),
-        };
-        let opts = SolveOptions {
-            mesh: MeshLevel::Coarse,
-            ..Default::default()
-        };
+        let interface = Interface::coulomb_orowan(mu, 0.1, elastic_slip_over_element);
+        let (problem, opts) = coarse_sinusoid(0.3, interface);
         let model = build_model(&problem, &opts);
         let mut st = model.initial_state();
         st.d = 0.01;

@@ -3,9 +3,8 @@
 use crate::fe::model::{Model, State};
 use crate::fe::newton::assembly::Assembly;
 use crate::fe::stepping::loading::loading_branch;
-use crate::fe::{
-    build_model, estar_over_g, Interface, Kinematics, LayerProblem, MeshLevel, SolveOptions,
-};
+use crate::fe::test_problems::coarse_sinusoid;
+use crate::fe::{build_model, estar_over_g, Interface, SolveOptions};
 
 /// The converged states of the frictionless sinusoid of aspect ratio `aspect_ratio` (finite
 /// kinematics, κ/G 1000, a layer one wavelength thick) on the coarse mesh, edge event by edge
@@ -14,19 +13,8 @@ pub(crate) fn loaded_sinusoid(
     aspect_ratio: f64,
     until_a_over_lambda: f64,
 ) -> (Model, Assembly, SolveOptions, Vec<State>) {
-    let problem = LayerProblem {
-        aspect_ratio,
-        finer_harmonics: crate::profile::FinerHarmonics::NONE,
-        thickness_over_lambda: 1.0,
-        kappa_over_g: 1000.0,
-        kinematics: Kinematics::Finite,
-        interface: Interface::Frictionless,
-    };
-    let opts = SolveOptions {
-        mesh: MeshLevel::Coarse,
-        until_a_over_lambda,
-        ..SolveOptions::default()
-    };
+    let (problem, mut opts) = coarse_sinusoid(aspect_ratio, Interface::Frictionless);
+    opts.until_a_over_lambda = until_a_over_lambda;
     let model = build_model(&problem, &opts);
     let mut asm = Assembly::new(&model);
     let estar = estar_over_g(problem.kappa_over_g);
