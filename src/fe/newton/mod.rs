@@ -276,6 +276,35 @@ const LOOSE_GAP_FACTOR: f64 = 100.0;
 /// doubles.
 const INSENSITIVE_GAP_RATE: f64 = 1e-300;
 
+/// The edge event's target node `k` and its gap tolerances: the bordered solve converges the
+/// target's gap to `gap_tol` ([`BORDERED_GAP_FRACTION`] of the event tolerance), in loose
+/// passes to [`LOOSE_GAP_FACTOR`] times that.
+#[derive(Clone, Copy, Debug)]
+struct EdgeTarget {
+    /// Contact-face index of the target node (held free).
+    node: usize,
+    /// Gap tolerance of the tight pass (units of λ).
+    gap_tol: f64,
+}
+
+impl EdgeTarget {
+    /// The gap tolerance of a pass converged to the residual tolerance `rtol`.
+    fn gap_tolerance(&self, opts: &SolveOptions, rtol: f64) -> f64 {
+        if rtol > opts.newton.residual_rtol {
+            LOOSE_GAP_FACTOR * self.gap_tol
+        } else {
+            self.gap_tol
+        }
+    }
+}
+
+/// One bordered Newton step `(δq, δd)` and the pieces of the friction law it was solved on.
+struct BorderedStep {
+    dq: Vec<f64>,
+    dd: f64,
+    held: Option<Vec<(usize, Branch)>>,
+}
+
 /// Newton iterations for the edge event on node `k` at a fixed active set: the slab
 /// displacement `d` is an extra unknown and the extra equation is the gap of node `k`
 /// (held free), `c(q) = 0`, converged to [`BORDERED_GAP_FRACTION`] of the event tolerance
@@ -288,6 +317,7 @@ const INSENSITIVE_GAP_RATE: f64 = 1e-300;
 ///
 /// Line search on the merit `‖r‖∞ + |∂r/∂d|∞ |c|` (forces), backtracking also on
 /// inversion; the linear frictionless problem takes the first non-inverted trial.
+/// Each iteration: check convergence, linearise, solve for the bordered step, search along it.
 pub(crate) fn newton_bordered(
     model: &Model,
     asm: &mut Assembly,
@@ -297,15 +327,14 @@ pub(crate) fn newton_bordered(
     event_tol: f64,
     rtol: f64,
 ) -> Result<usize, StepFail> {
-    let gap_tol = BORDERED_GAP_FRACTION * event_tol;
+    let target = EdgeTarget {
+        node: k,
+        gap_tol: BORDERED_GAP_FRACTION * event_tol,
+    };
+    let gtol = target.gap_tolerance(opts, rtol);
     let mut last_res = f64::NAN;
     let mut last_step = f64::INFINITY;
     let mut kscale = 0.0;
-    // the residual's part of the merit: its largest entry without friction; with friction
-    // its 2-norm, so that one node's row (a stick node's stiff spring) does not decide the
-    // step alone (fewer tangent assemblies: docs/performance.md)
-    let potential = model.is_potential();
-    let residual_merit = move |r: &[f64]| if potential { inf_norm(r) } else { l2_norm(r) };
     for it in 0..=opts.newton.max_iterations {
         interrupted(it, last_res)?;
         // convergence check on the forces alone (cached after the line search), the
@@ -319,11 +348,6 @@ pub(crate) fn newton_bordered(
         let (c, _) = model.edge_constraint(st, k);
         let res = convergence_norm(&f);
         let prev = std::mem::replace(&mut last_res, res);
-        let gtol = if rtol > opts.newton.residual_rtol {
-            LOOSE_GAP_FACTOR * gap_tol
-        } else {
-            gap_tol
-        };
         let tol = residual_tolerance(model, opts, rtol, f.force_scale);
         let forces_converged = res <= tol || at_round_off_floor(last_step, res, prev, tol);
         if forces_converged && c.abs() <= gtol {
@@ -338,75 +362,129 @@ pub(crate) fn newton_bordered(
         if it == 0 {
             kscale = inf_norm(&f.dresid_dd);
         }
-        let merit = residual_merit(&f.resid) + kscale * c.abs();
-        if !merit.is_finite() {
+        let merit = EdgeMerit {
+            potential: model.is_potential(),
+            node: k,
+            kscale,
+        };
+        let initial = merit.of(&f.resid, c);
+        if !initial.is_finite() {
             break;
         }
-        let mut rhs = vec![
-            f.resid.iter().map(|r| -r).collect::<Vec<f64>>(),
-            f.dresid_dd.iter().map(|r| -r).collect::<Vec<f64>>(),
-        ];
-        // the bordered step `(δq, δd)` from the two solutions
-        let rate = model.gap_rate_along(st, k);
-        let bordered_step = |z1: &[f64], z2: &[f64]| {
-            let dd = -(c + rate(z1)) / rate(z2);
-            let dq: Vec<f64> = z1.iter().zip(z2).map(|(a, b)| a + b * dd).collect();
-            (dq, dd)
-        };
-        let held = solve_newton_step(model, asm, opts, &mut rhs, it, |z| {
-            bordered_step(&z[0], &z[1])
-        })?;
-        let (z1, z2) = (&rhs[0], &rhs[1]);
-        let den = rate(z2);
-        if den.abs() < INSENSITIVE_GAP_RATE {
-            return Err(StepFail::Diverged {
+        let step = bordered_step(model, asm, opts, st, (target, c), &f, (it, res))?;
+        last_step = inf_norm(&step.dq);
+        *st = edge_line_search(model, asm, opts, st, &step, merit, initial).ok_or_else(|| {
+            StepFail::Diverged {
                 iteration: it,
                 residual: res,
-                reason: "edge constraint insensitive to the slab displacement".into(),
-            });
-        }
-        let (dq, dd) = bordered_step(z1, z2);
-        last_step = inf_norm(&dq);
-        let edge_merit = |m: &Model, trial: &State, ft: &Forces| {
-            let (ct, _) = m.edge_constraint(trial, k);
-            residual_merit(&ft.resid) + kscale * ct.abs()
-        };
-        let decrease = if model.kin == Kinematics::Linear && model.is_potential() {
-            Decrease::Exact
-        } else {
-            Decrease::Merit {
-                initial: merit,
-                merit: &edge_merit,
+                reason: "edge line search found no acceptable step".into(),
             }
-        };
-        let trial_at = |m: &Model, alpha: f64| {
-            let mut trial = st.clone();
-            trial.d += alpha * dd;
-            m.enforce_constraints(&mut trial);
-            holding(m.updated(&trial, &dq, alpha), held.as_deref())
-        };
-        match line_search(
-            model,
-            asm,
-            opts.newton.max_edge_line_search,
-            trial_at,
-            decrease,
-        ) {
-            Some(t) => *st = t,
-            None => {
-                return Err(StepFail::Diverged {
-                    iteration: it,
-                    residual: res,
-                    reason: "edge line search found no acceptable step".into(),
-                })
-            }
-        }
+        })?;
     }
     Err(StepFail::Diverged {
         iteration: opts.newton.max_iterations,
         residual: last_res,
         reason: "maximum Newton iterations reached (edge solve)".into(),
     })
+}
+
+/// The merit of the bordered line search: the residual's part (its largest entry without
+/// friction; with friction its 2-norm, so that one node's row, a stick node's stiff spring,
+/// does not decide the step alone: fewer tangent assemblies, docs/performance.md) plus
+/// `kscale |c|`, `kscale` the largest entry of `∂r/∂d` at the first iteration.
+#[derive(Clone, Copy, Debug)]
+struct EdgeMerit {
+    potential: bool,
+    node: usize,
+    kscale: f64,
+}
+
+impl EdgeMerit {
+    /// The merit of residual `resid` and target gap `c`.
+    fn of(&self, resid: &[f64], c: f64) -> f64 {
+        let residual = if self.potential {
+            inf_norm(resid)
+        } else {
+            l2_norm(resid)
+        };
+        residual + self.kscale * c.abs()
+    }
+}
+
+/// The bordered step of iteration `it` (residual norm `res`) from `st`, whose target gap is `c`
+/// and assembled forces `f` (the tangent assembled): both columns `K z₁ = −r`, `K z₂ = −∂r/∂d`
+/// solved on one factorisation ([`solve_newton_step`], with friction's pieces chosen on the
+/// bordered step), combined into `(δq, δd)`. Fails where the target's gap does not move with the
+/// slab (`|∇c·z₂|` below [`INSENSITIVE_GAP_RATE`]).
+fn bordered_step(
+    model: &Model,
+    asm: &mut Assembly,
+    opts: &SolveOptions,
+    st: &State,
+    (target, c): (EdgeTarget, f64),
+    f: &Forces,
+    (it, res): (usize, f64),
+) -> Result<BorderedStep, StepFail> {
+    let mut rhs = vec![
+        f.resid.iter().map(|r| -r).collect::<Vec<f64>>(),
+        f.dresid_dd.iter().map(|r| -r).collect::<Vec<f64>>(),
+    ];
+    let rate = model.gap_rate_along(st, target.node);
+    let combine = |z1: &[f64], z2: &[f64]| {
+        let dd = -(c + rate(z1)) / rate(z2);
+        let dq: Vec<f64> = z1.iter().zip(z2).map(|(a, b)| a + b * dd).collect();
+        (dq, dd)
+    };
+    let held = solve_newton_step(model, asm, opts, &mut rhs, it, |z| combine(&z[0], &z[1]))?;
+    let (z1, z2) = (&rhs[0], &rhs[1]);
+    if rate(z2).abs() < INSENSITIVE_GAP_RATE {
+        return Err(StepFail::Diverged {
+            iteration: it,
+            residual: res,
+            reason: "edge constraint insensitive to the slab displacement".into(),
+        });
+    }
+    let (dq, dd) = combine(z1, z2);
+    Ok(BorderedStep { dq, dd, held })
+}
+
+/// The line search along the bordered step from `st` ([`line_search`], at most
+/// `max_edge_line_search` halvings): on `merit` from its value `initial`, or, for the linear
+/// frictionless problem, the first non-inverted trial. `None` if no trial is accepted.
+fn edge_line_search(
+    model: &Model,
+    asm: &mut Assembly,
+    opts: &SolveOptions,
+    st: &State,
+    step: &BorderedStep,
+    merit: EdgeMerit,
+    initial: f64,
+) -> Option<State> {
+    let edge_merit = |m: &Model, trial: &State, ft: &Forces| {
+        let (ct, _) = m.edge_constraint(trial, merit.node);
+        merit.of(&ft.resid, ct)
+    };
+    let decrease = if model.kin == Kinematics::Linear && model.is_potential() {
+        Decrease::Exact
+    } else {
+        Decrease::Merit {
+            initial,
+            merit: &edge_merit,
+        }
+    };
+    let trial_at = |m: &Model, alpha: f64| {
+        let mut trial = st.clone();
+        trial.d += alpha * step.dd;
+        m.enforce_constraints(&mut trial);
+        holding(m.updated(&trial, &step.dq, alpha), step.held.as_deref())
+    };
+    line_search(
+        model,
+        asm,
+        opts.newton.max_edge_line_search,
+        trial_at,
+        decrease,
+    )
 }
 
 #[cfg(test)]
