@@ -300,8 +300,12 @@ impl EdgeTarget {
 
 /// One bordered Newton step `(δq, δd)` and the pieces of the friction law it was solved on.
 struct BorderedStep {
+    /// The correction `δq` of the unknowns, slot-wise (units of λ).
     dq: Vec<f64>,
+    /// The correction `δd` of the slab displacement (units of λ).
     dd: f64,
+    /// Under exact stick, each friction node's piece of the law in the step solved
+    /// (`(face index, branch)`); `None` otherwise.
     held: Option<Vec<(usize, Branch)>>,
 }
 
@@ -394,8 +398,11 @@ pub(crate) fn newton_bordered(
 /// `kscale |c|`, `kscale` the largest entry of `∂r/∂d` at the first iteration.
 #[derive(Clone, Copy, Debug)]
 struct EdgeMerit {
+    /// Whether the problem is frictionless (a potential problem): the residual's largest entry.
     potential: bool,
+    /// Contact-face index of the event's target node.
     node: usize,
+    /// `|∂r/∂d|∞` at the first iteration (force per unit of λ).
     kscale: f64,
 }
 
