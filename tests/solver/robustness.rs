@@ -6,7 +6,7 @@
 //! `make robustness`, and these cheap meshes are tabled). One test per AR, so that the harness
 //! spreads them over the cores.
 use std::ops::ControlFlow;
-use wavy::fe::{solve_cycle, Curve, Interface, Kinematics, LayerProblem, MeshLevel, SolveOptions};
+use wavy::fe::{solve_cycle, Curve, Interface, LayerProblem, MeshLevel, SolveOptions};
 
 /// Face elements of the cheap grid.
 const MESH: usize = 16;
@@ -15,16 +15,11 @@ const MESH: usize = 16;
 const FRICTION_COEFFICIENTS: [f64; 3] = [0.2, 1.0, 100.0];
 const TAU_MAX_OVER_ESTAR: [f64; 4] = [0.05, 0.1, 0.2, 0.3];
 
-/// The layer problem of one case of the grid (default physics otherwise: κ/G 1000, a layer
-/// one wavelength thick, finite kinematics, the default elastic slip of the stick band).
+/// The layer problem of one case of the grid: `interface`, and the default physics otherwise.
 fn problem(aspect_ratio: f64, interface: Interface) -> LayerProblem {
     LayerProblem {
-        aspect_ratio,
-        finer_harmonics: wavy::profile::FinerHarmonics::NONE,
-        thickness_over_lambda: wavy::defaults::thickness_over_lambda(),
-        kappa_over_g: wavy::defaults::kappa_over_g(),
-        kinematics: Kinematics::Finite,
         interface,
+        ..wavy::defaults::layer_problem(aspect_ratio)
     }
 }
 

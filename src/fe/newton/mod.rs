@@ -276,28 +276,6 @@ const LOOSE_GAP_FACTOR: f64 = 100.0;
 /// doubles.
 const INSENSITIVE_GAP_RATE: f64 = 1e-300;
 
-/// The edge event's target node `k` and its gap tolerances: the bordered solve converges the
-/// target's gap to `gap_tol` ([`BORDERED_GAP_FRACTION`] of the event tolerance), in loose
-/// passes to [`LOOSE_GAP_FACTOR`] times that.
-#[derive(Clone, Copy, Debug)]
-struct EdgeTarget {
-    /// Contact-face index of the target node (held free).
-    node: usize,
-    /// Gap tolerance of the tight pass (units of λ).
-    gap_tol: f64,
-}
-
-impl EdgeTarget {
-    /// The gap tolerance of a pass converged to the residual tolerance `rtol`.
-    fn gap_tolerance(&self, opts: &SolveOptions, rtol: f64) -> f64 {
-        if rtol > opts.newton.residual_rtol {
-            LOOSE_GAP_FACTOR * self.gap_tol
-        } else {
-            self.gap_tol
-        }
-    }
-}
-
 /// One bordered Newton step `(δq, δd)` and the pieces of the friction law it was solved on.
 struct BorderedStep {
     /// The correction `δq` of the unknowns, slot-wise (units of λ).
@@ -331,11 +309,12 @@ pub(crate) fn newton_bordered(
     event_tol: f64,
     rtol: f64,
 ) -> Result<usize, StepFail> {
-    let target = EdgeTarget {
-        node: k,
-        gap_tol: BORDERED_GAP_FRACTION * event_tol,
+    let gap_tol = BORDERED_GAP_FRACTION * event_tol;
+    let gtol = if rtol > opts.newton.residual_rtol {
+        LOOSE_GAP_FACTOR * gap_tol
+    } else {
+        gap_tol
     };
-    let gtol = target.gap_tolerance(opts, rtol);
     let mut last_res = f64::NAN;
     let mut last_step = f64::INFINITY;
     let mut kscale = 0.0;
@@ -375,7 +354,7 @@ pub(crate) fn newton_bordered(
         if !initial.is_finite() {
             break;
         }
-        let step = bordered_step(model, asm, opts, st, (target, c), &f, (it, res))?;
+        let step = bordered_step(model, asm, opts, st, (k, c), &f, (it, res))?;
         last_step = inf_norm(&step.dq);
         *st = edge_line_search(model, asm, opts, st, &step, merit, initial).ok_or_else(|| {
             StepFail::Diverged {
@@ -418,7 +397,8 @@ impl EdgeMerit {
     }
 }
 
-/// The bordered step of iteration `it` (residual norm `res`) from `st`, whose target gap is `c`
+/// The bordered step of iteration `it` (residual norm `res`) from `st`, whose target node `k`
+/// has gap `c`
 /// and assembled forces `f` (the tangent assembled): both columns `K z₁ = −r`, `K z₂ = −∂r/∂d`
 /// solved on one factorisation ([`solve_newton_step`], with friction's pieces chosen on the
 /// bordered step), combined into `(δq, δd)`. Fails where the target's gap does not move with the
@@ -428,7 +408,7 @@ fn bordered_step(
     asm: &mut Assembly,
     opts: &SolveOptions,
     st: &State,
-    (target, c): (EdgeTarget, f64),
+    (k, c): (usize, f64),
     f: &Forces,
     (it, res): (usize, f64),
 ) -> Result<BorderedStep, StepFail> {
@@ -436,7 +416,7 @@ fn bordered_step(
         f.resid.iter().map(|r| -r).collect::<Vec<f64>>(),
         f.dresid_dd.iter().map(|r| -r).collect::<Vec<f64>>(),
     ];
-    let rate = model.gap_rate_along(st, target.node);
+    let rate = model.gap_rate_along(st, k);
     let combine = |z1: &[f64], z2: &[f64]| {
         let dd = -(c + rate(z1)) / rate(z2);
         let dq: Vec<f64> = z1.iter().zip(z2).map(|(a, b)| a + b * dd).collect();
