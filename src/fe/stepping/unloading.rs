@@ -2,8 +2,8 @@
 //! load, with the friction history carried through.
 
 use crate::fe::contact::measure::{measure_between_events, Measured};
-use crate::fe::error::{CurveFailure, SolveError};
-use crate::fe::model::Model;
+use crate::fe::error::{CurveFailure, SolveError, StepFail};
+use crate::fe::model::{Model, State};
 use crate::fe::newton::active_set::Hold;
 use crate::fe::newton::assembly::Assembly;
 use crate::fe::stepping::load_path::LoadPath;
@@ -63,116 +63,211 @@ fn unload(
     path: &mut LoadPath,
     on_step: &mut dyn FnMut(&CurvePoint, Converged<'_>) -> ControlFlow<()>,
 ) -> Result<Vec<CurvePoint>, Box<CurveFailure>> {
-    let event_displacements = retraced_displacements(path, opts.steps.unloading_substeps);
-    let d_max = path.cur.d;
-    let retract_increment = event_displacements.first().copied().unwrap_or(d_max);
-    // targets as a stack, the next one last: scheduled displacements (committed and recorded) and
-    // intermediate ones (initial guesses for the next target only)
-    let mut targets: Vec<(f64, bool)> = vec![(0.0, true)];
-    targets.extend(
-        event_displacements
-            .iter()
-            .take(event_displacements.len().saturating_sub(1))
-            .map(|&d| (d, true)),
-    );
-    let mut points: Vec<CurvePoint> = Vec::new();
-    let fail = |path: &LoadPath, points: Vec<CurvePoint>, error: SolveError| {
+    let mut retraction = Retraction::start(path, opts);
+    loop {
+        let next = retraction.next_target(path, opts);
+        let Some(Target { d, scheduled }) = next.map_err(|e| retraction.fail(path, e))? else {
+            break;
+        };
+        retraction
+            .count_step(path, opts)
+            .map_err(|e| retraction.fail(path, e))?;
+        // exactly the target, so that a reversible cycle revisits the loading displacements
+        match displacement_step(model, asm, opts, &retraction.base, d, Hold::NONE) {
+            Ok((mut st, iterations)) if scheduled => {
+                asm.commit_slip(model, &mut st);
+                let measured = measure_between_events(model, asm, &st, estar, opts);
+                let flow = retraction.record(model, path, (st, measured), iterations, on_step);
+                if flow.is_break() {
+                    let points = path.points.len() + retraction.points.len();
+                    return Err(retraction.fail(path, SolveError::Stopped { points }));
+                }
+            }
+            Ok((st, iterations)) => retraction.pass_through(st, iterations),
+            Err(failed) => retraction
+                .cut(failed, d)
+                .map_err(|e| retraction.fail(path, e))?,
+        }
+    }
+    Ok(retraction.points)
+}
+
+/// One slab displacement the unloading branch steps to.
+#[derive(Clone, Copy, Debug)]
+struct Target {
+    /// The slab displacement (units of λ).
+    d: f64,
+    /// Scheduled (committed and recorded as a point) or intermediate (an initial guess for the
+    /// next target only).
+    scheduled: bool,
+}
+
+/// Where the unloading branch stands between its steps.
+struct Retraction {
+    /// The targets still ahead, as a stack: the next one last.
+    targets: Vec<Target>,
+    /// The slab displacement of the loaded state (units of λ): contact still held with the slab
+    /// as far out as it had been pressed in is an error.
+    d_max: f64,
+    /// How far the slab retracts per step past `d = 0` (units of λ): the first loading event's
+    /// increment.
+    retract_increment: f64,
+    /// `p̄/E*` of the last point.
+    p_over_estar: f64,
+    /// `p̄/E*` of the loaded state, the largest of the cycle: zero load is `p̄` within the
+    /// round-off of this.
+    p_max_over_estar: f64,
+    /// Where the next step starts: the last committed state, or an intermediate one past it.
+    base: State,
+    /// Newton iterations of the intermediate steps and failed tries since the last point.
+    spent: usize,
+    /// The step cuts made in a row, and their limits.
+    cuts: StepCuts,
+    /// Steps tried so far, intermediate and failed ones included.
+    steps: usize,
+    /// The unloading branch's points so far.
+    points: Vec<CurvePoint>,
+}
+
+impl Retraction {
+    /// At the loaded state of `path`, the loading points' displacements ahead in reverse
+    /// ([`retraced_displacements`]), then `d = 0`.
+    fn start(path: &LoadPath, opts: &SolveOptions) -> Self {
+        let event_displacements = retraced_displacements(path, opts.steps.unloading_substeps);
+        let d_max = path.cur.d;
+        let retract_increment = event_displacements.first().copied().unwrap_or(d_max);
+        let scheduled = |d| Target { d, scheduled: true };
+        let mut targets = vec![scheduled(0.0)];
+        let before_loaded = event_displacements.len().saturating_sub(1);
+        targets.extend(
+            event_displacements[..before_loaded]
+                .iter()
+                .map(|&d| scheduled(d)),
+        );
+        let p_over_estar = path.points.last().map_or(0.0, |p| p.p_over_estar);
+        Self {
+            targets,
+            d_max,
+            retract_increment,
+            p_over_estar,
+            p_max_over_estar: p_over_estar,
+            base: path.cur.clone(),
+            spent: 0,
+            cuts: unloading_cuts(opts, retract_increment),
+            steps: 0,
+            points: Vec::new(),
+        }
+    }
+
+    /// The next target; at `d = 0` or beyond, `None` once no contact force is left, else the
+    /// slab retracted by [`Self::retract_increment`] more, and an error once it is as far out as
+    /// it had been pressed in ([`SolveError::ContactPersists`]).
+    fn next_target(
+        &mut self,
+        path: &LoadPath,
+        opts: &SolveOptions,
+    ) -> Result<Option<Target>, SolveError> {
+        if let Some(&target) = self.targets.last() {
+            return Ok(Some(target));
+        }
+        let active = path.cur.active.iter().filter(|&&b| b).count();
+        if self.p_over_estar <= opts.newton.residual_rtol * self.p_max_over_estar || active == 0 {
+            return Ok(None);
+        }
+        let d = path.cur.d - self.retract_increment;
+        if d < -self.d_max {
+            return Err(SolveError::ContactPersists {
+                slab_displacement_over_lambda: path.cur.d,
+                p_over_estar: self.p_over_estar,
+                active_nodes: active,
+            });
+        }
+        let target = Target { d, scheduled: true };
+        self.targets.push(target);
+        Ok(Some(target))
+    }
+
+    /// Counts a step; more than `max_steps` is [`SolveError::TooManySteps`].
+    fn count_step(&mut self, path: &LoadPath, opts: &SolveOptions) -> Result<(), SolveError> {
+        self.steps += 1;
+        match self.steps > opts.steps.max_steps {
+            true => Err(SolveError::TooManySteps {
+                steps: opts.steps.max_steps,
+                a_over_lambda: path.a,
+            }),
+            false => Ok(()),
+        }
+    }
+
+    /// A scheduled target reached (`state`, its slip committed, and what was measured there, in
+    /// `iterations` Newton iterations of its own): recorded as the branch's next point, which
+    /// `on_step` sees; the path moves on to it. Returns `on_step`'s answer.
+    fn record(
+        &mut self,
+        model: &Model,
+        path: &mut LoadPath,
+        (state, measured): (State, Measured),
+        iterations: usize,
+        on_step: &mut dyn FnMut(&CurvePoint, Converged<'_>) -> ControlFlow<()>,
+    ) -> ControlFlow<()> {
+        let Measured {
+            mut point, grad, ..
+        } = measured;
+        point.newton_iterations = std::mem::take(&mut self.spent) + iterations;
+        let at = Converged {
+            model,
+            state: &state,
+            grad: &grad,
+        };
+        let flow = on_step(&point, at);
+        self.p_over_estar = point.p_over_estar;
+        path.a = point.a_over_lambda;
+        path.grad = grad;
+        self.base = state.clone();
+        path.prev = Some(std::mem::replace(&mut path.cur, state));
+        self.points.push(point);
+        self.targets.pop();
+        self.cuts.reset();
+        flow
+    }
+
+    /// An intermediate target reached: the next step starts from `state`.
+    fn pass_through(&mut self, state: State, iterations: usize) {
+        self.spent += iterations;
+        self.base = state;
+        self.targets.pop();
+        self.cuts.reset();
+    }
+
+    /// The step to `target` failed: an intermediate target between it and the base goes first
+    /// ([`StepCuts`]), or, with no cut left, [`SolveError::UnloadingStalled`].
+    fn cut(&mut self, failed: StepFail, target: f64) -> Result<(), SolveError> {
+        match self.cuts.cut(self.base.d, target) {
+            Some(d) => {
+                self.spent += failed.iterations();
+                self.targets.push(Target {
+                    d,
+                    scheduled: false,
+                });
+                Ok(())
+            }
+            None => Err(SolveError::UnloadingStalled {
+                slab_displacement_over_lambda: self.base.d,
+                target,
+                cuts: self.cuts.made(),
+                reason: failed.into_error(self.steps, target).to_string(),
+            }),
+        }
+    }
+
+    /// The failure `error`, with the loading branch of `path` and the unloading points so far.
+    fn fail(&mut self, path: &LoadPath, error: SolveError) -> Box<CurveFailure> {
         Box::new(CurveFailure {
             error,
             points: path.points.clone(),
-            unloading: points,
+            unloading: std::mem::take(&mut self.points),
         })
-    };
-    let mut cuts = unloading_cuts(opts, retract_increment);
-    let mut steps = 0;
-    let mut cur_p = path.points.last().map_or(0.0, |p| p.p_over_estar);
-    // zero load: the round-off of p̄ relative to the largest load of the cycle
-    let p_max = cur_p;
-    // where the next step starts: the last committed state, or an intermediate one past it
-    let mut base = path.cur.clone();
-    // Newton iterations of the intermediate steps and failed tries since the last point
-    let mut spent = 0;
-    loop {
-        let Some(&(target, scheduled)) = targets.last() else {
-            // at d = 0 or beyond: done when no contact force is left
-            let active = path.cur.active.iter().filter(|&&b| b).count();
-            if cur_p <= opts.newton.residual_rtol * p_max || active == 0 {
-                break;
-            }
-            let next = path.cur.d - retract_increment;
-            if next < -d_max {
-                let error = SolveError::ContactPersists {
-                    slab_displacement_over_lambda: path.cur.d,
-                    p_over_estar: cur_p,
-                    active_nodes: active,
-                };
-                return Err(fail(path, points, error));
-            }
-            targets.push((next, true));
-            continue;
-        };
-        steps += 1;
-        if steps > opts.steps.max_steps {
-            let error = SolveError::TooManySteps {
-                steps: opts.steps.max_steps,
-                a_over_lambda: path.a,
-            };
-            return Err(fail(path, points, error));
-        }
-        // exactly the target, so that a reversible cycle revisits the loading displacements
-        match displacement_step(model, asm, opts, &base, target, Hold::NONE) {
-            Ok((mut st, iters)) if scheduled => {
-                asm.commit_slip(model, &mut st);
-                let Measured {
-                    mut point, grad, ..
-                } = measure_between_events(model, asm, &st, estar, opts);
-                point.newton_iterations = spent + iters;
-                spent = 0;
-                let at = Converged {
-                    model,
-                    state: &st,
-                    grad: &grad,
-                };
-                let flow = on_step(&point, at);
-                cur_p = point.p_over_estar;
-                path.a = point.a_over_lambda;
-                path.grad = grad;
-                base = st.clone();
-                path.prev = Some(std::mem::replace(&mut path.cur, st));
-                points.push(point);
-                if flow.is_break() {
-                    let error = SolveError::Stopped {
-                        points: path.points.len() + points.len(),
-                    };
-                    return Err(fail(path, points, error));
-                }
-                targets.pop();
-                cuts.reset();
-            }
-            Ok((st, iters)) => {
-                spent += iters;
-                base = st;
-                targets.pop();
-                cuts.reset();
-            }
-            Err(f) => match cuts.cut(base.d, target) {
-                Some(intermediate) => {
-                    spent += f.iterations();
-                    targets.push((intermediate, false));
-                }
-                None => {
-                    let error = SolveError::UnloadingStalled {
-                        slab_displacement_over_lambda: base.d,
-                        target,
-                        cuts: cuts.made(),
-                        reason: f.into_error(steps, target).to_string(),
-                    };
-                    return Err(fail(path, points, error));
-                }
-            },
-        }
     }
-    Ok(points)
 }
 
 /// The slab displacements the unloading branch retraces, in loading order: those of the loading
