@@ -73,7 +73,8 @@ fn unload(
             .count_step(path, opts)
             .map_err(|e| retraction.fail(path, e))?;
         // exactly the target, so that a reversible cycle revisits the loading displacements
-        match displacement_step(model, asm, opts, &retraction.base, d, Hold::NONE) {
+        let step = displacement_step(model, asm, opts, retraction.base(path), d, Hold::NONE);
+        match step {
             Ok((mut st, iterations)) if scheduled => {
                 asm.commit_slip(model, &mut st);
                 let measured = measure_between_events(model, asm, &st, estar, opts);
@@ -85,7 +86,7 @@ fn unload(
             }
             Ok((st, iterations)) => retraction.pass_through(st, iterations),
             Err(failed) => retraction
-                .cut(failed, d)
+                .cut(path, failed, d)
                 .map_err(|e| retraction.fail(path, e))?,
         }
     }
@@ -112,13 +113,9 @@ struct Retraction {
     /// How far the slab retracts per step past `d = 0` (units of λ): the first loading event's
     /// increment.
     retract_increment: f64,
-    /// `p̄/E*` of the last point.
-    p_over_estar: f64,
-    /// `p̄/E*` of the loaded state, the largest of the cycle: zero load is `p̄` within the
-    /// round-off of this.
-    p_max_over_estar: f64,
-    /// Where the next step starts: the last committed state, or an intermediate one past it.
-    base: State,
+    /// The intermediate state past the last committed one (`path.cur`), if the last step
+    /// reached an intermediate target: where the next step starts ([`Self::base`]).
+    passed: Option<State>,
     /// Newton iterations of the intermediate steps and failed tries since the last point.
     spent: usize,
     /// The step cuts made in a row, and their limits.
@@ -144,19 +141,27 @@ impl Retraction {
                 .iter()
                 .map(|&d| scheduled(d)),
         );
-        let p_over_estar = path.points.last().map_or(0.0, |p| p.p_over_estar);
         Self {
             targets,
             d_max,
             retract_increment,
-            p_over_estar,
-            p_max_over_estar: p_over_estar,
-            base: path.cur.clone(),
+            passed: None,
             spent: 0,
             cuts: unloading_cuts(opts, retract_increment),
             steps: 0,
             points: Vec::new(),
         }
+    }
+
+    /// Where the next step starts: the last committed state, or the intermediate one past it.
+    fn base<'a>(&'a self, path: &'a LoadPath) -> &'a State {
+        self.passed.as_ref().unwrap_or(&path.cur)
+    }
+
+    /// `p̄/E*` of the last point, unloading or (before the first) loading.
+    fn last_p_over_estar(&self, path: &LoadPath) -> f64 {
+        let last = self.points.last().or(path.points.last());
+        last.map_or(0.0, |p| p.p_over_estar)
     }
 
     /// The next target; at `d = 0` or beyond, `None` once no contact force is left, else the
@@ -171,14 +176,17 @@ impl Retraction {
             return Ok(Some(target));
         }
         let active = path.cur.active.iter().filter(|&&b| b).count();
-        if self.p_over_estar <= opts.newton.residual_rtol * self.p_max_over_estar || active == 0 {
+        let p_over_estar = self.last_p_over_estar(path);
+        // zero load: within the round-off of the loaded state's p̄, the largest of the cycle
+        let p_max_over_estar = path.points.last().map_or(0.0, |p| p.p_over_estar);
+        if p_over_estar <= opts.newton.residual_rtol * p_max_over_estar || active == 0 {
             return Ok(None);
         }
         let d = path.cur.d - self.retract_increment;
         if d < -self.d_max {
             return Err(SolveError::ContactPersists {
                 slab_displacement_over_lambda: path.cur.d,
-                p_over_estar: self.p_over_estar,
+                p_over_estar,
                 active_nodes: active,
             });
         }
@@ -220,10 +228,9 @@ impl Retraction {
             grad: &grad,
         };
         let flow = on_step(&point, at);
-        self.p_over_estar = point.p_over_estar;
         path.a = point.a_over_lambda;
         path.grad = grad;
-        self.base = state.clone();
+        self.passed = None;
         path.prev = Some(std::mem::replace(&mut path.cur, state));
         self.points.push(point);
         self.targets.pop();
@@ -234,15 +241,16 @@ impl Retraction {
     /// An intermediate target reached: the next step starts from `state`.
     fn pass_through(&mut self, state: State, iterations: usize) {
         self.spent += iterations;
-        self.base = state;
+        self.passed = Some(state);
         self.targets.pop();
         self.cuts.reset();
     }
 
     /// The step to `target` failed: an intermediate target between it and the base goes first
     /// ([`StepCuts`]), or, with no cut left, [`SolveError::UnloadingStalled`].
-    fn cut(&mut self, failed: StepFail, target: f64) -> Result<(), SolveError> {
-        match self.cuts.cut(self.base.d, target) {
+    fn cut(&mut self, path: &LoadPath, failed: StepFail, target: f64) -> Result<(), SolveError> {
+        let from = self.base(path).d;
+        match self.cuts.cut(from, target) {
             Some(d) => {
                 self.spent += failed.iterations();
                 self.targets.push(Target {
@@ -252,7 +260,7 @@ impl Retraction {
                 Ok(())
             }
             None => Err(SolveError::UnloadingStalled {
-                slab_displacement_over_lambda: self.base.d,
+                slab_displacement_over_lambda: from,
                 target,
                 cuts: self.cuts.made(),
                 reason: failed.into_error(self.steps, target).to_string(),
