@@ -3,8 +3,9 @@
 //! 0.45 and unloaded to zero load on [`MESH`] face elements, at AR 0.05, 0.1 and 0.2. The grid's
 //! AR 0.3 and 0.4 are not here: on this mesh the layer loses stability before a/λ 0.45, without
 //! friction too (docs/verification.md, "Robustness grid", where the full grid at meshes 48–160,
-//! `make robustness`, and these cheap meshes are tabled). One test per AR, so that the harness
-//! spreads them over the cores.
+//! `make robustness`, and these cheap meshes are tabled); that the solver names that loss of
+//! stability when it stops is tested here. One test per AR, so that the harness spreads them over
+//! the cores.
 use std::ops::ControlFlow;
 use wavy::fe::{solve_cycle, Curve, Interface, LayerProblem, MeshLevel, SolveOptions};
 
@@ -103,4 +104,36 @@ fn robustness_grid_at_ar_0_1() {
 #[test]
 fn robustness_grid_at_ar_0_2() {
     grid_completes_at(0.2);
+}
+
+/// Where the coarse layer loses stability, the solver says so: the frictionless AR 0.3 and 0.4
+/// curves on [`MESH`] face elements stop short of a/λ 0.45 (at d/λ 0.288 and 0.267,
+/// docs/verification.md) with a Newton failure whose message names the indefinite tangent and
+/// the finer mesh, and the AR 0.3 curve on 32 elements, where the layer holds, completes.
+#[test]
+fn a_coarse_layer_losing_stability_is_named_in_the_message() {
+    for aspect_ratio in [0.3, 0.4] {
+        let message = cycle(&problem(aspect_ratio, Interface::Frictionless))
+            .expect_err("the coarse layer loses stability");
+        assert!(
+            message.contains("Newton diverged")
+                && message.contains("tangent stiffness was indefinite")
+                && message.contains("finer mesh"),
+            "AR {aspect_ratio}: {message}"
+        );
+    }
+    let opts = SolveOptions {
+        mesh: MeshLevel::along_face(32),
+        until_a_over_lambda: 0.45,
+        ..SolveOptions::default()
+    };
+    let complete =
+        wavy::fe::solve_curve(&problem(0.3, Interface::Frictionless), &opts, &mut |_| {
+            ControlFlow::Continue(())
+        });
+    assert!(
+        complete.is_ok(),
+        "AR 0.3 on 32 elements: {:?}",
+        complete.err().map(|f| f.to_string())
+    );
 }

@@ -244,19 +244,46 @@ pub(crate) fn newton(
         match line_search(model, asm, opts.newton.max_line_search, stepped, decrease) {
             Some(t) => *st = t,
             None => {
-                return Err(StepFail::Diverged {
-                    iteration: it,
-                    residual: res,
-                    reason: "line search found no acceptable step".into(),
-                })
+                let reason = "line search found no acceptable step";
+                return Err(diverged(model, asm, (it, res), reason));
             }
         }
     }
-    Err(StepFail::Diverged {
-        iteration: opts.newton.max_iterations,
-        residual: last_res,
-        reason: "maximum Newton iterations reached".into(),
-    })
+    let reason = "maximum Newton iterations reached";
+    Err(diverged(
+        model,
+        asm,
+        (opts.newton.max_iterations, last_res),
+        reason,
+    ))
+}
+
+/// What a frictionless solve's divergence adds to its reason when the last tangent was
+/// indefinite: the energy is not convex there, the signature of the coarse layer's loss of
+/// stability at large aspect ratios, which a finer mesh delays (docs/verification.md,
+/// "Robustness grid"). With friction the symmetric part is indefinite in ordinary steps, so
+/// it says nothing.
+const INDEFINITE_TANGENT: &str = "the tangent stiffness was indefinite at the last iterate: \
+     the energy is not convex there, the signature of the discrete layer losing stability, which \
+     at large aspect ratios a finer mesh delays (docs/verification.md, \"Robustness grid\")";
+
+/// The failure of a Newton solve at `(iteration, residual)` for `reason`, with
+/// [`INDEFINITE_TANGENT`] where it applies.
+fn diverged(
+    model: &Model,
+    asm: &Assembly,
+    (iteration, residual): (usize, f64),
+    reason: &str,
+) -> StepFail {
+    let indefinite = model.is_potential() && asm.sys.held_factorisation_indefinite();
+    StepFail::Diverged {
+        iteration,
+        residual,
+        reason: match indefinite {
+            true => format!("{reason}; {INDEFINITE_TANGENT}"),
+            false => reason.into(),
+        },
+    }
 }
 
 /// The bordered solve converges the target's gap to this fraction of the event
@@ -356,19 +383,23 @@ pub(crate) fn newton_bordered(
         }
         let step = bordered_step(model, asm, opts, st, (k, c), &f, (it, res))?;
         last_step = inf_norm(&step.dq);
-        *st = edge_line_search(model, asm, opts, st, &step, merit, initial).ok_or_else(|| {
-            StepFail::Diverged {
-                iteration: it,
-                residual: res,
-                reason: "edge line search found no acceptable step".into(),
-            }
+        let searched = edge_line_search(model, asm, opts, st, &step, merit, initial);
+        *st = searched.ok_or_else(|| {
+            diverged(
+                model,
+                asm,
+                (it, res),
+                "edge line search found no acceptable step",
+            )
         })?;
     }
-    Err(StepFail::Diverged {
-        iteration: opts.newton.max_iterations,
-        residual: last_res,
-        reason: "maximum Newton iterations reached (edge solve)".into(),
-    })
+    let reason = "maximum Newton iterations reached (edge solve)";
+    Err(diverged(
+        model,
+        asm,
+        (opts.newton.max_iterations, last_res),
+        reason,
+    ))
 }
 
 /// The merit of the bordered line search: the residual's part (its largest entry without
