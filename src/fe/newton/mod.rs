@@ -249,12 +249,12 @@ pub(crate) fn newton(
             }
         }
     }
-    let reason = "maximum Newton iterations reached";
+    let last = (opts.newton.max_iterations, last_res);
     Err(diverged(
         model,
         asm,
-        (opts.newton.max_iterations, last_res),
-        reason,
+        last,
+        "maximum Newton iterations reached",
     ))
 }
 
@@ -393,12 +393,12 @@ pub(crate) fn newton_bordered(
             )
         })?;
     }
-    let reason = "maximum Newton iterations reached (edge solve)";
+    let last = (opts.newton.max_iterations, last_res);
     Err(diverged(
         model,
         asm,
-        (opts.newton.max_iterations, last_res),
-        reason,
+        last,
+        "maximum Newton iterations reached (edge solve)",
     ))
 }
 
