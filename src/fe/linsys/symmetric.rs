@@ -286,9 +286,6 @@ impl SparseSystem {
         Ok(())
     }
 
-    /// `true` when the `L D Lᵀ` factorisation held has a positive `D` (the matrix was
-    /// positive definite: Cholesky would have succeeded), or when that cannot be read (a
-    /// simplicial factorisation).
     /// Whether the factorisation held says the symmetric part is indefinite: an `L D Lᵀ`
     /// with a pivot that is not positive, or the pivoting `L B Lᵀ` or LU that the chain falls
     /// back to when `L D Lᵀ` fails (a Cholesky factorisation, or none, says nothing).
@@ -300,6 +297,9 @@ impl SparseSystem {
         }
     }
 
+    /// `true` when the `L D Lᵀ` factorisation held has a positive `D` (the matrix was
+    /// positive definite: Cholesky would have succeeded), or when that cannot be read (a
+    /// simplicial factorisation).
     fn ldlt_positive(&self) -> bool {
         let Some(symbolic) = self.symbolic_cholesky.as_ref() else {
             return true;

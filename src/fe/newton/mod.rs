@@ -249,13 +249,9 @@ pub(crate) fn newton(
             }
         }
     }
+    let reason = "maximum Newton iterations reached";
     let last = (opts.newton.max_iterations, last_res);
-    Err(diverged(
-        model,
-        asm,
-        last,
-        "maximum Newton iterations reached",
-    ))
+    Err(diverged(model, asm, last, reason))
 }
 
 /// What a frictionless solve's divergence adds to its reason when the last tangent was
@@ -384,22 +380,12 @@ pub(crate) fn newton_bordered(
         let step = bordered_step(model, asm, opts, st, (k, c), &f, (it, res))?;
         last_step = inf_norm(&step.dq);
         let searched = edge_line_search(model, asm, opts, st, &step, merit, initial);
-        *st = searched.ok_or_else(|| {
-            diverged(
-                model,
-                asm,
-                (it, res),
-                "edge line search found no acceptable step",
-            )
-        })?;
+        let reason = "edge line search found no acceptable step";
+        *st = searched.ok_or_else(|| diverged(model, asm, (it, res), reason))?;
     }
+    let reason = "maximum Newton iterations reached (edge solve)";
     let last = (opts.newton.max_iterations, last_res);
-    Err(diverged(
-        model,
-        asm,
-        last,
-        "maximum Newton iterations reached (edge solve)",
-    ))
+    Err(diverged(model, asm, last, reason))
 }
 
 /// The merit of the bordered line search: the residual's part (its largest entry without
