@@ -236,7 +236,7 @@ fn solve_on_thread(
 #[pyfunction]
 #[pyo3(signature = (*, ar, tau_max_mpa, mu, elastic_slip_over_element, estar_mpa, kappa_over_g, thickness_over_lambda,
     kinematics, mesh, tolerance, error_estimate, until_a_over_lambda, until_p_over_estar, unload,
-    vtk, profile, until_contact_fraction, max_memory, solver, grid_points, points, half_plane))]
+    unloading_substeps, vtk, profile, until_contact_fraction, max_memory, solver, grid_points, points, half_plane))]
 #[allow(clippy::too_many_arguments)]
 fn solve<'py>(
     py: Python<'py>,
@@ -254,6 +254,7 @@ fn solve<'py>(
     until_a_over_lambda: f64,
     until_p_over_estar: Option<f64>,
     unload: bool,
+    unloading_substeps: Option<usize>,
     vtk: Option<PathBuf>,
     profile: Option<&str>,
     until_contact_fraction: Option<f64>,
@@ -298,6 +299,7 @@ fn solve<'py>(
         until_p_over_estar,
         until_contact_fraction,
         unload,
+        unloading_substeps,
         max_memory,
         finer_harmonics,
         solver,

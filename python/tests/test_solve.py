@@ -57,6 +57,19 @@ def test_an_unloading_loop_matches_the_cli():
         r.cycle_work_over_estar_lambda2, rel=0.01)
 
 
+def test_unloading_substeps_match_the_cli():
+    args = ["--ar", 0.3, "--tau-max-mpa", 0.05, "--until-a-over-lambda", 0.4, "--unload",
+            "--mesh", 16, "--unloading-substeps", 2]
+    rows = cli_rows("solve", *args)
+    r = wavy.solve(ar=0.3, tau_max_mpa=0.05, until_a_over_lambda=0.4, unload=True, mesh=16,
+                   unloading_substeps=2)
+    assert_same_rows(r, rows, extra=["branch"])
+    one = wavy.solve(ar=0.3, tau_max_mpa=0.05, until_a_over_lambda=0.4, unload=True, mesh=16)
+    loading = list(r.branch).count("loading")
+    assert list(one.branch).count("loading") == loading
+    assert list(r.branch).count("unloading") > list(one.branch).count("unloading")
+
+
 def test_exact_stick_matches_the_cli():
     args = ["--ar", 0.3, "--tau-max-mpa", 0.1, "--until-a-over-lambda", 0.3, "--mesh", 16,
             "--elastic-slip-over-element", 0]

@@ -107,6 +107,7 @@ def solve(
     grid_points: Optional[int] = None,
     points: Optional[int] = None,
     half_plane: bool = False,
+    unloading_substeps: Optional[int] = None,
 ) -> Result: ...
 def run(spec_path: PathLike, out: Optional[PathLike] = None,
         cache: Optional[PathLike] = None) -> List[str]: ...

@@ -36,6 +36,7 @@ def solve(
     grid_points: Optional[int] = None,
     points: Optional[int] = None,
     half_plane: bool = False,
+    unloading_substeps: Optional[int] = None,
 ) -> Result:
     """One finite-element load curve, as ``wavy solve`` computes it with the same options.
 
@@ -129,6 +130,12 @@ def solve(
     half_plane : bool, optional
         With ``solver="bem"``: the half-plane instead of the layer.
         Default False.
+    unloading_substeps : int, optional
+        With ``unload``: unloading steps per loading step, an int >= 1, each interval
+        between the loading steps' loads retraced in this many equal steps: the unloading
+        branch sampled finer, so that the face's work of friction and the trapezoid sum of the
+        loop's work converge with it (docs/verification.md, "The energy audit", measures what
+        each choice does). Default None: 1.
 
     Returns
     -------
@@ -202,6 +209,7 @@ def solve(
         grid_points=_checks.optional_count("grid_points", grid_points),
         points=_checks.optional_count("points", points),
         half_plane=_checks.flag("half_plane", half_plane),
+        unloading_substeps=_checks.optional_count("unloading_substeps", unloading_substeps),
     )
     stopped = fields.pop("stopped")
     result = Result(fields)

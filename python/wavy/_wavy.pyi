@@ -17,7 +17,8 @@ def solve(*, ar: float, tau_max_mpa: float, mu: float, elastic_slip_over_element
           estar_mpa: float, kappa_over_g: float,
           thickness_over_lambda: float, kinematics: Optional[str], mesh: Optional[str],
           tolerance: Optional[float], error_estimate: bool, until_a_over_lambda: float,
-          until_p_over_estar: Optional[float], unload: bool, vtk: Optional[str],
+          until_p_over_estar: Optional[float], unload: bool,
+          unloading_substeps: Optional[int], vtk: Optional[str],
           profile: Optional[str], until_contact_fraction: Optional[float],
           max_memory: Optional[int], solver: str, grid_points: Optional[int],
           points: Optional[int], half_plane: bool) -> Dict[str, Any]: ...

@@ -118,6 +118,13 @@ pub struct SolveArgs {
     /// last row) go to stderr.
     #[arg(long, conflicts_with = "error_estimate")]
     pub unload: bool,
+    /// With --unload: unloading steps per loading step (a whole number >= 1), each interval
+    /// between the loading steps' loads retraced in this many equal steps: the unloading
+    /// branch sampled finer, so that the face's work of friction and the trapezoid sum of the
+    /// loop's work converge with it; docs/verification.md ("The energy audit") measures what
+    /// each choice does. [default: 1]
+    #[arg(long, requires = "unload")]
+    pub unloading_substeps: Option<usize>,
     /// Also write the deformed state of every converged point into this folder for ParaView:
     /// one step_NNNN.vtu per point (displacement, reference position, contact and stick
     /// status, pressure, shear and slip on the face, J per element) and series.pvd, the time series
@@ -159,6 +166,7 @@ impl SolveArgs {
             until_p_over_estar: self.until_p_over_estar,
             until_contact_fraction: self.until_contact_fraction,
             unload: self.unload,
+            unloading_substeps: self.unloading_substeps,
             max_memory: self.max_memory,
             solver: self.solver,
             grid_points: self.grid_points,

@@ -94,6 +94,13 @@ pub const DA_TARGET: InputRange = InputRange {
     test: |v| v >= 0.0,
 };
 
+/// Unloading steps per loading step: a whole number, at least one.
+pub const UNLOADING_SUBSTEPS: InputRange = InputRange {
+    field: "unloading_substeps",
+    allowed: "a whole number >= 1",
+    test: |v| v >= 1.0 && v.fract() == 0.0,
+};
+
 /// The fraction of its element at which the fraction edge rule places the contact edge.
 pub const EDGE_FRACTION: InputRange = InputRange {
     field: "edge_rule.fraction",

@@ -194,8 +194,7 @@ pub fn validate(problem: &LayerProblem, opts: &SolveOptions) -> Result<(), Solve
         input_ranges::UNTIL_P_OVER_ESTAR.check(p)?;
     }
     input_ranges::DA_TARGET.check(opts.steps.da_target)?;
-    let substeps = opts.steps.unloading_substeps;
-    check_range("unloading_substeps", substeps as f64, substeps >= 1, ">= 1")?;
+    input_ranges::UNLOADING_SUBSTEPS.check(opts.steps.unloading_substeps as f64)?;
     if let EdgeRule::Fraction(phi) = opts.contact.edge_rule {
         input_ranges::EDGE_FRACTION.check(phi)?;
     }

@@ -252,6 +252,45 @@ fn solve_with_unload_prints_both_branches() {
     );
 }
 
+/// `--unloading-substeps N` retraces each interval between the loading rows' loads in N steps:
+/// a frictionless loop, which lets no node go between them, has N unloading rows per loading
+/// row. N must be a whole number ≥ 1, and needs `--unload` and the finite-element solver.
+#[test]
+fn unloading_substeps_split_each_unloading_interval() {
+    let branches = |substeps: &str| {
+        let loop_args = "solve --ar 0.1 --mesh 16 --until-a-over-lambda 0.3 --unload";
+        let mut args: Vec<&str> = loop_args.split(' ').collect();
+        args.extend(["--unloading-substeps", substeps]);
+        let o = wavy(&args, here());
+        assert!(o.status.success(), "{}", stderr(&o));
+        let text = stdout(&o);
+        let last: Vec<String> = (text.lines().skip(1))
+            .map(|l| l.rsplit(',').next().unwrap().to_string())
+            .collect();
+        let loading = last.iter().filter(|b| *b == "loading").count();
+        (loading, last.len() - loading)
+    };
+    let (loading, unloading) = branches("3");
+    assert!(loading >= 3, "{loading} loading rows");
+    assert_eq!(unloading, 3 * loading);
+    assert_eq!(branches("1"), (loading, loading));
+    for (args, flag) in [
+        (
+            &["--unload", "--unloading-substeps", "0"][..],
+            "--unloading-substeps",
+        ),
+        (&["--unloading-substeps", "2"][..], "--unload"),
+        (
+            &["--unload", "--unloading-substeps", "2", "--solver", "bem"][..],
+            "--unloading-substeps",
+        ),
+    ] {
+        let o = wavy(&[&["solve", "--ar", "0.1"][..], args].concat(), here());
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(flag), "{args:?}: {}", stderr(&o));
+    }
+}
+
 /// A reader that closes the pipe early (`wavy eval … | head -1`) ends every command quietly
 /// with exit 0: no panic, no error message.
 #[test]

@@ -68,6 +68,13 @@ impl SolveRequest {
                 "belongs to the finite-element solver; the boundary-element solver's grid is --grid-points",
             ));
         }
+        if let Some(n) = self.unloading_substeps {
+            return Err(refused(
+                "--unloading-substeps",
+                n,
+                "belongs to the finite-element solver; the boundary-element solver unloads back through its loading pressures",
+            ));
+        }
         let profile = Profile {
             aspect_ratio: self.ar,
             finer: self.finer_harmonics,

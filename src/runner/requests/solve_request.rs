@@ -9,6 +9,7 @@ use crate::defaults;
 use crate::fe::input_ranges;
 use crate::fe::{
     self, CurvePoint, Kinematics, LayerProblem, LoadDirection, MeshLevel, SolveOptions, SolveWork,
+    StepOptions,
 };
 use crate::profile::{FinerHarmonics, Profile};
 use crate::runner::requests::cost_estimate::{self, CostEstimate};
@@ -59,6 +60,9 @@ pub struct SolveRequest {
     pub until_contact_fraction: Option<f64>,
     /// Then unload back to zero load.
     pub unload: bool,
+    /// With `unload`: unloading steps per loading step (a whole number ≥ 1; `None`: the
+    /// solver's default, [`crate::fe::StepOptions::unloading_substeps`]).
+    pub unloading_substeps: Option<usize>,
     /// Refuse the solve when its estimated peak memory is above this many bytes
     /// ([`CostEstimate::check`]; it is also refused above the memory available).
     pub max_memory: Option<u64>,
@@ -92,6 +96,7 @@ impl SolveRequest {
             until_p_over_estar: None,
             until_contact_fraction: None,
             unload: false,
+            unloading_substeps: None,
             max_memory: None,
             solver: Solver::FiniteElement,
             grid_points: None,
@@ -208,6 +213,16 @@ impl SolveRequest {
                 "cannot be used with --error-estimate",
             ));
         }
+        if let Some(n) = self.unloading_substeps {
+            within(
+                "--unloading-substeps",
+                &input_ranges::UNLOADING_SUBSTEPS,
+                n as f64,
+            )?;
+            if !self.unload {
+                return Err(refused("--unloading-substeps", n, "needs --unload"));
+            }
+        }
         Ok(())
     }
 
@@ -259,12 +274,19 @@ impl SolveRequest {
             }
             None => (self.mesh.unwrap_or_default(), None),
         };
+        let defaults = SolveOptions::default();
         let options = SolveOptions {
             until_a_over_lambda: x,
             until_p_over_estar: self.until_p_over_estar,
             until_contact_fraction: self.until_contact_fraction,
             mesh,
-            ..SolveOptions::default()
+            steps: StepOptions {
+                unloading_substeps: self
+                    .unloading_substeps
+                    .unwrap_or(defaults.steps.unloading_substeps),
+                ..defaults.steps
+            },
+            ..defaults
         };
         let case = FeCase::new(&physics, self.ar, self.tau_max_mpa, options);
         let problem = LayerProblem {
