@@ -113,7 +113,8 @@ fn without_friction_the_face_does_no_work() {
 /// (docs/verification.md, "The energy audit"). The last point is the closed loop, where the face's
 /// work is the dissipation. The finer steps sample the unloading branch without moving it: where
 /// both runs have a point (the loading points' displacements), p̄ agrees within 1.2e-7 of the
-/// peak p̄ (asserted 1e-6; the Newton tolerance is 1e-10): slip hardly reverses inside an
+/// peak p̄ (asserted 1e-6; Newton stops at a residual of 1e-10 of the largest nodal force,
+/// `NewtonOptions::residual_rtol`): slip hardly reverses inside an
 /// interval, and one return-mapping step lands where four do. A history carried wrongly from
 /// step to step would move it.
 #[test]

@@ -9,7 +9,6 @@ use crate::defaults;
 use crate::fe::input_ranges;
 use crate::fe::{
     self, CurvePoint, Kinematics, LayerProblem, LoadDirection, MeshLevel, SolveOptions, SolveWork,
-    StepOptions,
 };
 use crate::profile::{FinerHarmonics, Profile};
 use crate::runner::requests::cost_estimate::{self, CostEstimate};
@@ -274,20 +273,16 @@ impl SolveRequest {
             }
             None => (self.mesh.unwrap_or_default(), None),
         };
-        let defaults = SolveOptions::default();
-        let options = SolveOptions {
+        let mut options = SolveOptions {
             until_a_over_lambda: x,
             until_p_over_estar: self.until_p_over_estar,
             until_contact_fraction: self.until_contact_fraction,
             mesh,
-            steps: StepOptions {
-                unloading_substeps: self
-                    .unloading_substeps
-                    .unwrap_or(defaults.steps.unloading_substeps),
-                ..defaults.steps
-            },
-            ..defaults
+            ..SolveOptions::default()
         };
+        if let Some(n) = self.unloading_substeps {
+            options.steps.unloading_substeps = n;
+        }
         let case = FeCase::new(&physics, self.ar, self.tau_max_mpa, options);
         let problem = LayerProblem {
             finer_harmonics: self.finer_harmonics,
