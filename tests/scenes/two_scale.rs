@@ -45,3 +45,27 @@ fn contact_maps_need_a_frictionless_first_curve() {
     let without_maps = frictional_first.replace("contact_maps = [0]", "contact_maps = []");
     wavy::runner::Spec::parse(&without_maps, "two_scale_small.toml").expect("no map, no rule");
 }
+
+/// `mesh_by_order` gives the profiles whose finer harmonic has an order their own mesh; an
+/// entry for an order no profile has, an order twice or no elements is refused, naming the field.
+#[test]
+fn mesh_by_order_names_orders_of_the_profiles() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(root.join("tests/specs/two_scale_small.toml")).unwrap();
+    assert!(text.contains("mesh = 64\n"));
+    let with = |entries: &str| {
+        text.replace(
+            "mesh = 64\n",
+            &format!("mesh = 64\nmesh_by_order = {entries}\n"),
+        )
+    };
+    wavy::runner::Spec::parse(&with("[[8, 48]]"), "two_scale_small.toml").expect("n = 8 on 48");
+    for bad in ["[[16, 96]]", "[[8, 48], [8, 96]]", "[[8, 0]]"] {
+        let err = wavy::runner::Spec::parse(&with(bad), "two_scale_small.toml").unwrap_err();
+        let message = err.to_string();
+        assert!(
+            message.contains("two_scale.mesh_by_order"),
+            "{bad}: {message}"
+        );
+    }
+}

@@ -23,6 +23,9 @@ pub(crate) struct ComparisonSettings<'a> {
     pub table: &'a str,
     /// Elements along the contact face.
     pub mesh: usize,
+    /// `(n, elements)`: the elements along the face, in place of `mesh`, of the profiles whose
+    /// finest harmonic has order `n`.
+    pub mesh_by_finest_order: &'a [(u32, usize)],
     /// At least this many face elements per wavelength of a profile's finest harmonic (0: none).
     pub elements_per_finest_wavelength: usize,
     /// Elements along the face of the error-estimate mesh (fewer than `mesh`).
@@ -72,6 +75,10 @@ impl ComparisonSettings<'_> {
                 allowed,
             );
         }
+        if let Some(&(n, elements)) = self.mesh_by_finest_order.iter().find(|e| e.1 == 0) {
+            let value = format!("[{n}, {elements}]");
+            return refuse("mesh_by_order", value, "at least one element".into());
+        }
         if self.model_points < 2 {
             return refuse("model_points", self.model_points.to_string(), ">= 2".into());
         }
@@ -96,16 +103,20 @@ impl ComparisonSettings<'_> {
         }
     }
 
-    /// The face elements of a profile whose finest harmonic has order `finest_order`: `mesh`, or
-    /// more where that harmonic needs `elements_per_finest_wavelength` (`finest_order`
-    /// wavelengths per λ, the face spans λ/2).
+    /// The face elements of a profile whose finest harmonic has order `finest_order`: its entry
+    /// in `mesh_by_finest_order`, else `mesh`, or more where that harmonic needs
+    /// `elements_per_finest_wavelength` (`finest_order` wavelengths per λ, the face spans λ/2).
     pub fn mesh_for(&self, finest_order: u32) -> usize {
-        self.mesh
-            .max((self.elements_per_finest_wavelength * finest_order as usize).div_ceil(2))
+        let stated = self
+            .mesh_by_finest_order
+            .iter()
+            .find(|&&(n, _)| n == finest_order)
+            .map_or(self.mesh, |&(_, elements)| elements);
+        stated.max((self.elements_per_finest_wavelength * finest_order as usize).div_ceil(2))
     }
 
-    /// The face elements of that profile's error-estimate mesh: `error_estimate_mesh`, grown as
-    /// [`Self::mesh_for`] grows `mesh`.
+    /// The face elements of that profile's error-estimate mesh: `error_estimate_mesh` scaled as
+    /// [`Self::mesh_for`] scales `mesh`, so that every profile's two meshes have one ratio.
     pub fn estimate_mesh_for(&self, finest_order: u32) -> usize {
         let grown = self.mesh_for(finest_order) as f64 / self.mesh as f64;
         (self.error_estimate_mesh as f64 * grown).round() as usize

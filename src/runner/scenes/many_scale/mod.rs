@@ -187,6 +187,7 @@ impl ManyScaleScene {
         ComparisonSettings {
             table: "many_scale",
             mesh: self.mesh,
+            mesh_by_finest_order: &[],
             elements_per_finest_wavelength: self.elements_per_finest_wavelength,
             error_estimate_mesh: self.error_estimate_mesh,
             depth_ratio: self.depth_ratio,
