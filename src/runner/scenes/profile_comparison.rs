@@ -75,10 +75,6 @@ impl ComparisonSettings<'_> {
                 allowed,
             );
         }
-        if let Some(&(n, elements)) = self.mesh_by_finest_order.iter().find(|e| e.1 == 0) {
-            let value = format!("[{n}, {elements}]");
-            return refuse("mesh_by_order", value, "at least one element".into());
-        }
         if self.model_points < 2 {
             return refuse("model_points", self.model_points.to_string(), ">= 2".into());
         }

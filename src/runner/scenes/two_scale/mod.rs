@@ -195,11 +195,13 @@ impl TwoScaleScene {
         cases
     }
 
-    /// Each entry of `mesh_by_order` names the order of some profile's finer harmonic, once
-    /// (the element counts are checked with the other settings).
+    /// Each entry of `mesh_by_order` names the order of some profile's finer harmonic, once,
+    /// with at least one element. Checked before the profiles' meshes are (a profile that
+    /// cannot be read has no order here; its own check names it).
     fn validate_mesh_by_order(&self, v: &Validator) -> Result<(), SpecError> {
-        let orders: Vec<u32> = (0..self.profiles.len())
-            .map(|i| self.profile(i).max_order())
+        let orders: Vec<u32> = (self.profiles.iter())
+            .filter_map(|p| Profile::from_pairs(p).ok())
+            .map(|p| p.max_order())
             .collect();
         for (k, &(n, elements)) in self.mesh_by_order.iter().enumerate() {
             let allowed = if !orders.contains(&n) {
@@ -208,6 +210,8 @@ impl TwoScaleScene {
                 ))
             } else if self.mesh_by_order[..k].iter().any(|&(m, _)| m == n) {
                 Some("each order once".into())
+            } else if elements == 0 {
+                Some("at least one element".into())
             } else {
                 None
             };
@@ -286,6 +290,7 @@ impl Scene for TwoScaleScene {
         v.non_empty("two_scale.profiles", self.profiles.len())?;
         v.non_empty("two_scale.tau_max_mpa", self.tau_max_mpa.len())?;
         self.settings().validate(v)?;
+        self.validate_mesh_by_order(v)?;
         let field = "two_scale.profiles";
         for (i, p) in self.profiles.iter().enumerate() {
             let text = format!("{p:?}");
@@ -309,7 +314,6 @@ impl Scene for TwoScaleScene {
                     .map_err(|e| v.invalid(field, None, text.clone(), e.to_string()))?;
             }
         }
-        self.validate_mesh_by_order(v)?;
         if let Some(&i) = self
             .contact_maps
             .iter()
