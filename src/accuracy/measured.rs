@@ -310,6 +310,41 @@ impl MeasuredAccuracy {
         if self.cases.is_empty() {
             return Err(ChoiceError::NoMeasurements);
         }
+        let corners = self.corners(query)?;
+        let mut best: Option<(Tier, f64)> = None;
+        let mut chosen: Option<Choice> = None;
+        let mut names: Vec<Tier> = vec![];
+        for m in &self.tiers {
+            if !names.contains(&m.tier) {
+                names.push(m.tier);
+            }
+        }
+        for tier in names.into_iter().filter(|t| candidates(t)) {
+            let Some((error, cost)) = self.over_corners(tier, &corners, query) else {
+                continue;
+            };
+            if best.is_none_or(|(_, e)| error < e) {
+                best = Some((tier, error));
+            }
+            if error <= tolerance && chosen.as_ref().is_none_or(|c| cost < c.seconds_per_curve) {
+                chosen = Some(Choice {
+                    tier,
+                    max_rel_error: error,
+                    seconds_per_curve: cost,
+                    cases: corners
+                        .iter()
+                        .map(|c| (c.aspect_ratio, c.tau_max_mpa))
+                        .collect(),
+                });
+            }
+        }
+        chosen.ok_or(ChoiceError::NoTierMeets { tolerance, best })
+    }
+
+    /// The measured cases at the corners of the (AR, τ_max) cell that holds `query`; an error
+    /// where the query lies outside the measured region (its AR, τ_max, a/λ range or other
+    /// physics).
+    fn corners(&self, query: &Query) -> Result<Vec<&MeasuredCase>, ChoiceError> {
         let outside = |quantity: &str, value: f64, values: &[f64]| ChoiceError::OutsideRegion {
             quantity: quantity.into(),
             value,
@@ -354,56 +389,30 @@ impl MeasuredAccuracy {
                         }
                     }
                 }
-                corners.push((a, t, case.reference_uncertainty));
+                corners.push(case);
             }
         }
-        // per tier: (largest error, largest cost) over the corners, if measured at every corner
-        let mut best: Option<(Tier, f64)> = None;
-        let mut chosen: Option<Choice> = None;
-        let mut names: Vec<Tier> = vec![];
-        for m in &self.tiers {
-            if !names.contains(&m.tier) {
-                names.push(m.tier);
-            }
+        Ok(corners)
+    }
+
+    /// A tier's largest error (its measured error plus the reference's uncertainty) and largest
+    /// cost over `corners`; none unless it was measured at every corner.
+    fn over_corners(
+        &self,
+        tier: Tier,
+        corners: &[&MeasuredCase],
+        query: &Query,
+    ) -> Option<(f64, f64)> {
+        let mut error = 0.0f64;
+        let mut cost = 0.0f64;
+        for c in corners {
+            let m = self.tiers.iter().find(|m| {
+                m.tier == tier && m.aspect_ratio == c.aspect_ratio && m.tau_max_mpa == c.tau_max_mpa
+            })?;
+            error = error.max(self.error_over(m, query.a_over_lambda)? + c.reference_uncertainty);
+            cost = cost.max(m.seconds_per_curve);
         }
-        for tier in names.into_iter().filter(|t| candidates(t)) {
-            let mut error = 0.0f64;
-            let mut cost = 0.0f64;
-            let mut complete = true;
-            for &(a, t, reference_uncertainty) in &corners {
-                match self
-                    .tiers
-                    .iter()
-                    .find(|m| m.tier == tier && m.aspect_ratio == a && m.tau_max_mpa == t)
-                    .and_then(|m| {
-                        Some((
-                            self.error_over(m, query.a_over_lambda)?,
-                            m.seconds_per_curve,
-                        ))
-                    }) {
-                    Some((e, c)) => {
-                        error = error.max(e + reference_uncertainty);
-                        cost = cost.max(c);
-                    }
-                    None => complete = false,
-                }
-            }
-            if !complete {
-                continue;
-            }
-            if best.is_none_or(|(_, e)| error < e) {
-                best = Some((tier, error));
-            }
-            if error <= tolerance && chosen.as_ref().is_none_or(|c| cost < c.seconds_per_curve) {
-                chosen = Some(Choice {
-                    tier,
-                    max_rel_error: error,
-                    seconds_per_curve: cost,
-                    cases: corners.iter().map(|&(a, t, _)| (a, t)).collect(),
-                });
-            }
-        }
-        chosen.ok_or(ChoiceError::NoTierMeets { tolerance, best })
+        Some((error, cost))
     }
 }
 

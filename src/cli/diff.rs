@@ -93,12 +93,33 @@ fn stem_of<'a>(file: &str, stems: &'a [String]) -> Option<&'a String> {
         .max_by_key(|s| s.len())
 }
 
+/// A table compared between the base and the working tree: its file name, both sides and what
+/// changed.
+type Compared = (String, CsvTable, CsvTable, TableChange);
+
+/// The tables of one spec: those that changed, those on one side only, and those that did not
+/// change (drawn too: the overlay shows the whole figure).
+#[derive(Default)]
+struct SpecTables {
+    changed: Vec<Compared>,
+    one_side: Vec<(String, Presence)>,
+    unchanged: Vec<Compared>,
+}
+
 /// Runs `wavy diff`; exit 1 when something moved beyond a spec's `[check]` tolerances.
 pub fn diff(args: &DiffArgs, out: &mut impl Write) -> Result<ExitCode> {
     let rev = base_revision(args.base.as_deref())?;
-    let mut specs: BTreeMap<String, (f64, f64)> = BTreeMap::new();
-    for e in std::fs::read_dir(&args.experiments)
-        .with_context(|| format!("cannot list {}", args.experiments.display()))?
+    let tolerances = spec_tolerances(&args.experiments)?;
+    let by_stem = compare_tables(args, &rev, &tolerances)?;
+    clear_review_folder(&args.out)?;
+    write_review(args, &rev, &by_stem, out)
+}
+
+/// The `[check]` tolerances `(rel, abs)` of every spec in `experiments`, by its file stem.
+fn spec_tolerances(experiments: &Path) -> Result<BTreeMap<String, (f64, f64)>> {
+    let mut specs = BTreeMap::new();
+    for e in std::fs::read_dir(experiments)
+        .with_context(|| format!("cannot list {}", experiments.display()))?
         .flatten()
     {
         let p = e.path();
@@ -111,33 +132,39 @@ pub fn diff(args: &DiffArgs, out: &mut impl Write) -> Result<ExitCode> {
             );
         }
     }
-    let stems: Vec<String> = specs.keys().cloned().collect();
+    Ok(specs)
+}
+
+/// Every figure table, in the working tree or at `rev`, compared and grouped by its spec (the
+/// tables of no spec are left out: they are not figures of this project).
+fn compare_tables(
+    args: &DiffArgs,
+    rev: &str,
+    tolerances: &BTreeMap<String, (f64, f64)>,
+) -> Result<BTreeMap<String, SpecTables>> {
+    let stems: Vec<String> = tolerances.keys().cloned().collect();
     let mut files: Vec<String> = std::fs::read_dir(&args.figures)
         .with_context(|| format!("cannot list {}", args.figures.display()))?
         .flatten()
         .filter_map(|e| e.file_name().to_str().map(String::from))
         .filter(|f| f.ends_with(".csv"))
         .collect();
-    let in_base = base_files(&rev, &args.figures)?;
+    let in_base = base_files(rev, &args.figures)?;
     files.extend(in_base.iter().cloned());
     files.sort();
     files.dedup();
 
-    type Compared = (String, CsvTable, CsvTable, TableChange);
-    // per stem: changed tables, tables on one side only, unchanged tables
-    #[allow(clippy::type_complexity)]
-    let mut by_stem: BTreeMap<String, (Vec<Compared>, Vec<(String, Presence)>, Vec<Compared>)> =
-        BTreeMap::new();
+    let mut by_stem: BTreeMap<String, SpecTables> = BTreeMap::new();
     for file in &files {
         let Some(stem) = stem_of(file, &stems) else {
-            continue; // a table of no spec: not a figure of this project
+            continue;
         };
-        let (rel, abs) = specs[stem];
+        let (rel, abs) = tolerances[stem];
         let entry = by_stem.entry(stem.clone()).or_default();
         let path = args.figures.join(file);
         let new_text = std::fs::read_to_string(&path).ok();
         let base = if in_base.contains(file) {
-            Some(base_text(&rev, &path)?)
+            Some(base_text(rev, &path)?)
         } else {
             None
         };
@@ -146,27 +173,44 @@ pub fn diff(args: &DiffArgs, out: &mut impl Write) -> Result<ExitCode> {
                 let parse = |t: &str, side: &str| {
                     CsvTable::parse(t).with_context(|| format!("{file} ({side}): not CSV"))
                 };
-                let (bt, nt) = (parse(&b, &rev)?, parse(&n, "working tree")?);
+                let (bt, nt) = (parse(&b, rev)?, parse(&n, "working tree")?);
                 let change = review::compare(file, &bt, &nt, rel, abs);
-                // unchanged tables are drawn too: the overlay shows the whole figure
-                let target = if b == n { &mut entry.2 } else { &mut entry.0 };
+                let target = if b == n {
+                    &mut entry.unchanged
+                } else {
+                    &mut entry.changed
+                };
                 target.push((file.clone(), bt, nt, change));
             }
-            (None, Some(_)) => entry.1.push((file.clone(), Presence::Added)),
-            (Some(_), None) => entry.1.push((file.clone(), Presence::Removed)),
+            (None, Some(_)) => entry.one_side.push((file.clone(), Presence::Added)),
+            (Some(_), None) => entry.one_side.push((file.clone(), Presence::Removed)),
             (None, None) => {}
         }
     }
+    Ok(by_stem)
+}
 
-    // the review folder holds only this run's files
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("cannot create {}", args.out.display()))?;
-    for e in std::fs::read_dir(&args.out)?.flatten() {
+/// Creates the review folder and removes the overlays and summary of an earlier run: it holds
+/// only this run's files.
+fn clear_review_folder(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    for e in std::fs::read_dir(dir)?.flatten() {
         let p = e.path();
         if p.extension().is_some_and(|x| x == "svg") || p.ends_with("summary.md") {
             std::fs::remove_file(&p).with_context(|| format!("cannot remove {}", p.display()))?;
         }
     }
+    Ok(())
+}
+
+/// Writes `summary.md` and an overlay per changed figure; the exit code says whether a table
+/// moved beyond its spec's tolerances (or appeared or disappeared).
+fn write_review(
+    args: &DiffArgs,
+    rev: &str,
+    by_stem: &BTreeMap<String, SpecTables>,
+    out: &mut impl Write,
+) -> Result<ExitCode> {
     let mut md = format!(
         "# What moved: figures/ at `{rev}` against the working tree\n\n\
          Largest changes per panel (named by its parameters) and column; **moved** marks a change \
@@ -174,23 +218,22 @@ pub fn diff(args: &DiffArgs, out: &mut impl Write) -> Result<ExitCode> {
     );
     let mut moved_tables = 0;
     let mut changed_figures = 0;
-    for (stem, (compared, presence, unchanged)) in &by_stem {
-        if compared.is_empty() && presence.is_empty() {
+    for (stem, tables) in by_stem {
+        if tables.changed.is_empty() && tables.one_side.is_empty() {
             continue;
         }
         changed_figures += 1;
-        let changes: Vec<TableChange> = compared.iter().map(|c| c.3.clone()).collect();
-        moved_tables += changes.iter().filter(|c| c.moved()).count() + presence.len();
-        md.push_str(&review::summary(stem, &changes, presence));
-        let drawn: Vec<Compared> = compared.iter().chain(unchanged).cloned().collect();
+        let changes: Vec<TableChange> = tables.changed.iter().map(|c| c.3.clone()).collect();
+        moved_tables += changes.iter().filter(|c| c.moved()).count() + tables.one_side.len();
+        md.push_str(&review::summary(stem, &changes, &tables.one_side));
+        let drawn: Vec<Compared> = (tables.changed.iter().chain(&tables.unchanged))
+            .cloned()
+            .collect();
         if let Some(fig) = review::overlay(stem, &drawn) {
             let svg = wavy::plot::render_svg(&fig)?;
-            write_atomic(&args.out.join(format!("{stem}.svg")), svg.as_bytes())?;
-            writeln!(
-                out,
-                "wrote {}",
-                args.out.join(format!("{stem}.svg")).display()
-            )?;
+            let path = args.out.join(format!("{stem}.svg"));
+            write_atomic(&path, svg.as_bytes())?;
+            writeln!(out, "wrote {}", path.display())?;
         }
     }
     if changed_figures == 0 {

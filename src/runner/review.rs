@@ -363,6 +363,38 @@ pub fn summary(stem: &str, changes: &[TableChange], presence: &[(String, Presenc
 /// The overlay of one figure: a panel per key group of its curve tables (the ones that moved
 /// most, at most [`MAX_PANELS`]), base grey and dashed under the new data.
 pub fn overlay(stem: &str, tables: &[(String, CsvTable, CsvTable, TableChange)]) -> Option<Figure> {
+    let panels = overlay_panels(tables);
+    if panels.is_empty() {
+        return None;
+    }
+    let total = panels.len();
+    let chosen = most_moved(panels);
+    let cols = chosen.len().min(3);
+    let rows = chosen.len().div_ceil(cols);
+    let panels = chosen
+        .into_iter()
+        .map(|(name, panel)| overlay_panel(stem, name, panel))
+        .collect();
+    Some(Figure {
+        width: 460 * cols as u32,
+        height: 340 * rows as u32 + 120,
+        caption: format!("{stem}: base (grey, dashed) under the working tree"),
+        grid: (rows, cols),
+        panels,
+        footer: vec![if total > MAX_PANELS {
+            format!("The {MAX_PANELS} panels that moved most of {total}; every panel is in review/summary.md.")
+        } else {
+            format!("{total} panels; the numbers are in review/summary.md.")
+        }],
+        font_px: 14,
+    })
+}
+
+/// The overlay's panels by name: for each panel of each table's change, the base curve (grey,
+/// dashed) and the new one of every value column.
+fn overlay_panels(
+    tables: &[(String, CsvTable, CsvTable, TableChange)],
+) -> BTreeMap<String, OverlayPanel> {
     let mut panels: BTreeMap<String, OverlayPanel> = BTreeMap::new();
     for (file, base, new, change) in tables {
         let Some(x) = &change.roles.x else { continue };
@@ -406,12 +438,13 @@ pub fn overlay(stem: &str, tables: &[(String, CsvTable, CsvTable, TableChange)])
             }
         }
     }
-    if panels.is_empty() {
-        return None;
-    }
+    panels
+}
+
+/// The [`MAX_PANELS`] panels that moved most (all of them if there are no more), by name.
+fn most_moved(panels: BTreeMap<String, OverlayPanel>) -> Vec<(String, OverlayPanel)> {
     let mut chosen: Vec<(String, OverlayPanel)> = panels.into_iter().collect();
-    let total = chosen.len();
-    if total > MAX_PANELS {
+    if chosen.len() > MAX_PANELS {
         chosen.sort_by(|a, b| {
             b.1.largest_rel
                 .total_cmp(&a.1.largest_rel)
@@ -420,55 +453,37 @@ pub fn overlay(stem: &str, tables: &[(String, CsvTable, CsvTable, TableChange)])
         chosen.truncate(MAX_PANELS);
         chosen.sort_by(|a, b| a.0.cmp(&b.0));
     }
-    let cols = chosen.len().min(3);
-    let rows = chosen.len().div_ceil(cols);
-    let panels = chosen
-        .into_iter()
-        .map(
-            |(
-                name,
-                OverlayPanel {
-                    largest_rel: rel,
-                    series,
-                    x,
-                },
-            )| {
-                let xs = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.0)));
-                let ys = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
-                Panel {
-                    title: if name.is_empty() {
-                        stem.to_string()
-                    } else {
-                        name
-                    },
-                    x_label: x,
-                    y_label: "value".into(),
-                    x_range: xs,
-                    y_range: ys,
-                    series,
-                    notes: vec![format!(
-                        "largest rel. change {}",
-                        numfmt::sig_digits(rel, 2)
-                    )],
-                    log_scale: (false, false),
-                    legend: Some(LegendPosition::UpperLeft),
-                }
-            },
-        )
-        .collect();
-    Some(Figure {
-        width: 460 * cols as u32,
-        height: 340 * rows as u32 + 120,
-        caption: format!("{stem}: base (grey, dashed) under the working tree"),
-        grid: (rows, cols),
-        panels,
-        footer: vec![if total > MAX_PANELS {
-            format!("The {MAX_PANELS} panels that moved most of {total}; every panel is in review/summary.md.")
+    chosen
+}
+
+/// The plotted panel `name` of the figure `stem` (titled by the stem when the table has a
+/// single unnamed panel), its ranges padded around its series.
+fn overlay_panel(stem: &str, name: String, panel: OverlayPanel) -> Panel {
+    let OverlayPanel {
+        largest_rel,
+        series,
+        x,
+    } = panel;
+    let xs = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.0)));
+    let ys = padded_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
+    Panel {
+        title: if name.is_empty() {
+            stem.to_string()
         } else {
-            format!("{total} panels; the numbers are in review/summary.md.")
-        }],
-        font_px: 14,
-    })
+            name
+        },
+        x_label: x,
+        y_label: "value".into(),
+        x_range: xs,
+        y_range: ys,
+        series,
+        notes: vec![format!(
+            "largest rel. change {}",
+            numfmt::sig_digits(largest_rel, 2)
+        )],
+        log_scale: (false, false),
+        legend: Some(LegendPosition::UpperLeft),
+    }
 }
 
 /// One panel of an overlay: its series and the largest relative change of its values.

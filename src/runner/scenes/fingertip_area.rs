@@ -17,7 +17,7 @@ use crate::runner::scenes::fingertip_ridges::{ridge_aspect_ratio, FingertipFe};
 use crate::runner::scenes::scene_output::{Layout, Remarks};
 use crate::runner::scenes::wnl_beyond_fit::{fit_estar_mpa, outside_fit};
 use crate::runner::scenes::{Scene, SceneContext, SceneResult};
-use crate::runner::sweep::fe_cases::{self, FeCase};
+use crate::runner::sweep::fe_cases::{self, FeCase, FeOutcome};
 use crate::runner::{model_laws, RunOptions};
 use crate::spec::{
     Bounded, Grid, Location, ModelSelection, NonNegative, Positive, SpecError, Validator,
@@ -347,8 +347,6 @@ fn fe_series(
     remarks: &mut Remarks,
 ) -> Result<(Vec<Series>, Vec<String>)> {
     let tau = s.tau_max_mpa.get();
-    let loads = s.load_n.values();
-    let [e_lo, e_mid, e_hi] = s.moduli();
     let outcomes = fe_cases::solve_all(&s.fe_cases(opts), opts)?;
     let mut footer = vec![];
     let mut curves = vec![];
@@ -362,71 +360,16 @@ fn fe_series(
                 fe.status()
             ));
         }
-        let mut pts = vec![];
-        for &f in &loads {
-            let p = contact.p_over_estar(f, estar);
-            let inverse = fe_a_over_lambda_at(&fe.points, p)
-                .map_err(|e| anyhow::anyhow!("FE curve {label}: {e}"))?;
-            let (x, a, state): (Cell, Cell, &str) = match inverse {
-                FeInverse::Within(x) => {
-                    pts.push((f, contact.area_mm2(x)));
-                    (x.into(), contact.area_mm2(x).into(), "partial")
-                }
-                FeInverse::Beyond { .. } if fe.failure.is_some() => {
-                    (Cell::Empty, Cell::Empty, "fe_incomplete")
-                }
-                FeInverse::Beyond { .. } => (Cell::Empty, Cell::Empty, "beyond_fe"),
-            };
-            table.push(vec![
-                "fe".into(),
-                estar.into(),
-                f.into(),
-                p.into(),
-                x,
-                a,
-                state.into(),
-                false.into(),
-            ]);
-        }
-        if pts.len() < loads.len() {
+        let curve = fe_area_curve(s, contact, estar, fe, &label, table)?;
+        if curve.0.len() < s.load_n.values().len() {
             beyond.push(format!(
                 "F > {} N at E* = {estar} MPa",
-                sig_digits(pts.last().map_or(0.0, |p| p.0), 3)
+                sig_digits(curve.0.last().map_or(0.0, |p| p.0), 3)
             ));
         }
-        curves.push((pts, fe.last_a_over_lambda()));
+        curves.push(curve);
     }
-    // The band runs where both its edges are computed; the stiff edge and the central line
-    // go on to their own last points.
-    let n = curves[0].0.len().min(curves[2].0.len());
-    let mut series = vec![
-        Series::band(
-            Some(format!("direct FE (ours), E* ∈ [{e_lo}, {e_hi}] MPa")),
-            palette::GREEN,
-            curves[2].0[..n].to_vec(),
-            curves[0].0[..n].to_vec(),
-        ),
-        Series::dashed(None, palette::GREEN, 1, curves[2].0.clone()),
-        Series::line(
-            Some(format!("direct FE (ours), E* = {e_mid} MPa")),
-            palette::GREEN,
-            3,
-            curves[1].0.clone(),
-        ),
-    ];
-    let ends: Vec<(f64, f64)> = curves
-        .iter()
-        .filter(|c| c.0.len() < loads.len())
-        .filter_map(|c| c.0.last().copied())
-        .collect();
-    if !ends.is_empty() {
-        series.push(Series::markers(
-            Some("end of an FE curve (last load on it)".into()),
-            palette::GREEN,
-            6,
-            ends,
-        ));
-    }
+    let series = fe_band_series(s, &curves);
     let reached = curves.iter().map(|c| c.1).fold(f64::INFINITY, f64::min);
     footer.insert(
         0,
@@ -444,6 +387,85 @@ fn fe_series(
         ));
     }
     Ok((series, footer))
+}
+
+/// The FE curve at `estar` as (load N, area mm²) points up to the last load it reaches, with
+/// the last a/λ it reached; one row of `table` per load (empty cells where the curve does not
+/// reach it).
+fn fe_area_curve(
+    s: &FingertipAreaScene,
+    contact: &Contact,
+    estar: f64,
+    fe: &FeOutcome,
+    label: &str,
+    table: &mut Table,
+) -> Result<(Vec<(f64, f64)>, f64)> {
+    let mut pts = vec![];
+    for f in s.load_n.values() {
+        let p = contact.p_over_estar(f, estar);
+        let inverse = fe_a_over_lambda_at(&fe.points, p)
+            .map_err(|e| anyhow::anyhow!("FE curve {label}: {e}"))?;
+        let (x, a, state): (Cell, Cell, &str) = match inverse {
+            FeInverse::Within(x) => {
+                pts.push((f, contact.area_mm2(x)));
+                (x.into(), contact.area_mm2(x).into(), "partial")
+            }
+            FeInverse::Beyond { .. } if fe.failure.is_some() => {
+                (Cell::Empty, Cell::Empty, "fe_incomplete")
+            }
+            FeInverse::Beyond { .. } => (Cell::Empty, Cell::Empty, "beyond_fe"),
+        };
+        table.push(vec![
+            "fe".into(),
+            estar.into(),
+            f.into(),
+            p.into(),
+            x,
+            a,
+            state.into(),
+            false.into(),
+        ]);
+    }
+    Ok((pts, fe.last_a_over_lambda()))
+}
+
+/// The series of the FE curves at E* low, central and high (`curves`, from
+/// [`fe_area_curve`]): the band runs where both its edges are computed; the stiff edge and the
+/// central line go on to their own last points, and a curve short of the last load ends in a
+/// marker.
+fn fe_band_series(s: &FingertipAreaScene, curves: &[(Vec<(f64, f64)>, f64)]) -> Vec<Series> {
+    let [e_lo, e_mid, e_hi] = s.moduli();
+    let n = curves[0].0.len().min(curves[2].0.len());
+    let mut series = vec![
+        Series::band(
+            Some(format!("direct FE (ours), E* ∈ [{e_lo}, {e_hi}] MPa")),
+            palette::GREEN,
+            curves[2].0[..n].to_vec(),
+            curves[0].0[..n].to_vec(),
+        ),
+        Series::dashed(None, palette::GREEN, 1, curves[2].0.clone()),
+        Series::line(
+            Some(format!("direct FE (ours), E* = {e_mid} MPa")),
+            palette::GREEN,
+            3,
+            curves[1].0.clone(),
+        ),
+    ];
+    let loads = s.load_n.values().len();
+    let ends: Vec<(f64, f64)> = curves
+        .iter()
+        .filter(|c| c.0.len() < loads)
+        .filter_map(|c| c.0.last().copied())
+        .collect();
+    if !ends.is_empty() {
+        series.push(Series::markers(
+            Some("end of an FE curve (last load on it)".into()),
+            palette::GREEN,
+            6,
+            ends,
+        ));
+    }
+    series
 }
 
 /// The panel's title, which says where the WNL law is extrapolated (as in the paper); each

@@ -16,103 +16,137 @@ pub(in crate::runner) fn figure_panels(
     let with_errors: Vec<&Measurement> = measured.filter(|m| m.errors.is_some()).collect();
     let errors: Vec<f64> = with_errors.iter().map(|m| m.errors.unwrap().max).collect();
     let costs: Vec<f64> = with_errors.iter().map(|m| m.seconds_per_curve).collect();
-    let (x_range, y_range) = (log_range(&errors), log_range(&costs));
-    let finite_meshes: Vec<String> = tiers
-        .iter()
-        .filter_map(|t| match t {
-            Tier::Fe {
-                kinematics: Kinematics::Finite,
-                elements_along_face,
-            } => Some(elements_along_face.to_string()),
-            _ => None,
-        })
-        .collect();
-    let fe_label = format!("FE finite strain, mesh {}", finite_meshes.join(", "));
-    let richardson_pairs: Vec<String> = tiers
-        .iter()
-        .filter_map(|t| match t {
-            Tier::FeRichardson { coarse, fine } => Some(format!("{coarse}+{fine}")),
-            _ => None,
-        })
-        .collect();
-    let richardson_label = format!("FE Richardson, meshes {}", richardson_pairs.join(", "));
-    let family = |t: &Tier| match t {
-        Tier::Westergaard => ("Westergaard", palette::BLACK),
-        Tier::Wnl(crate::models::CoefficientSet::PaperTable1) => {
-            ("WNL, paper's Table 1", palette::ORANGE)
-        }
-        Tier::Wnl(_) => ("WNL, our refit", palette::GREEN),
-        Tier::Fe {
-            kinematics: Kinematics::Linear,
-            ..
-        } => ("FE linear", palette::PURPLE),
-        Tier::Fe { .. } => (fe_label.as_str(), palette::BLUE),
-        Tier::FeRichardson { .. } => (richardson_label.as_str(), palette::VERMILION),
-    };
+    let ranges = (log_range(&errors), log_range(&costs));
+    let families = Families::of(tiers);
     let mut panels = vec![];
     let mut failed_cases = vec![];
     for (k, c) in cases.iter().enumerate() {
-        let ms = &c.measurements;
-        let front_points: Vec<(f64, f64)> = c
-            .front
-            .iter()
-            .map(|&i| (ms[i].errors.unwrap().max, ms[i].seconds_per_curve))
-            .collect();
-        let mut series = vec![Series::dashed(
-            (k == 0).then(|| "Pareto front".into()),
-            palette::GREY,
-            1,
-            front_points,
-        )];
-        let mut labels: Vec<&str> = vec![];
-        for m in ms {
-            let Some(e) = m.errors else { continue };
-            let (label, color) = family(&m.tier);
-            let first = !labels.contains(&label);
-            labels.push(label);
-            series.push(Series::markers(
-                (k == 0 && first).then(|| label.to_string()),
-                color,
-                5,
-                vec![(e.max, m.seconds_per_curve)],
-            ));
-        }
-        let fe_path: Vec<(f64, f64)> = ms
-            .iter()
-            .filter(|m| m.tier.is_finite_fe())
-            .filter_map(|m| Some((m.errors?.max, m.seconds_per_curve)))
-            .collect();
-        series.push(Series::line(None, palette::BLUE, 1, fe_path));
-        let failed: Vec<String> = ms
-            .iter()
+        let failed: Vec<String> = (c.measurements.iter())
             .filter(|m| m.errors.is_none())
             .map(|m| m.tier.name())
             .collect();
         let (ar, tau) = (c.aspect_ratio, c.tau_max_mpa);
-        let mut notes = vec![format!(
-            "reference uncertain by ≤ {}",
-            accuracy::measured::percent(c.reference_uncertainty)
-        )];
         if !failed.is_empty() {
-            notes.push(format!("no curve: {}", failed.join(", ")));
             failed_cases.push(format!(
                 "AR = {ar}, τ_max = {tau} MPa: {}",
                 failed.join(", ")
             ));
         }
-        panels.push(Panel {
-            title: format!("AR = {ar}, τ_max = {tau} MPa"),
-            x_label: "largest relative error of p̄/E*".into(),
-            y_label: "wall time per curve, s".into(),
-            x_range,
-            y_range,
-            series,
-            notes,
-            log_scale: (true, true),
-            legend: (k == 0).then_some(LegendPosition::LowerLeft),
-        });
+        panels.push(case_panel(c, k == 0, &families, ranges, &failed));
     }
     (panels, failed_cases)
+}
+
+/// The legend's names of the FE families, which list the meshes of the spec's tiers.
+struct Families {
+    /// The finite-strain meshes.
+    finite: String,
+    /// The Richardson pairs.
+    richardson: String,
+}
+
+impl Families {
+    fn of(tiers: &[Tier]) -> Self {
+        let finite_meshes: Vec<String> = tiers
+            .iter()
+            .filter_map(|t| match t {
+                Tier::Fe {
+                    kinematics: Kinematics::Finite,
+                    elements_along_face,
+                } => Some(elements_along_face.to_string()),
+                _ => None,
+            })
+            .collect();
+        let richardson_pairs: Vec<String> = tiers
+            .iter()
+            .filter_map(|t| match t {
+                Tier::FeRichardson { coarse, fine } => Some(format!("{coarse}+{fine}")),
+                _ => None,
+            })
+            .collect();
+        Families {
+            finite: format!("FE finite strain, mesh {}", finite_meshes.join(", ")),
+            richardson: format!("FE Richardson, meshes {}", richardson_pairs.join(", ")),
+        }
+    }
+
+    /// The legend name and colour of a tier's family.
+    fn of_tier(&self, t: &Tier) -> (&str, plotters::style::RGBColor) {
+        match t {
+            Tier::Westergaard => ("Westergaard", palette::BLACK),
+            Tier::Wnl(crate::models::CoefficientSet::PaperTable1) => {
+                ("WNL, paper's Table 1", palette::ORANGE)
+            }
+            Tier::Wnl(_) => ("WNL, our refit", palette::GREEN),
+            Tier::Fe {
+                kinematics: Kinematics::Linear,
+                ..
+            } => ("FE linear", palette::PURPLE),
+            Tier::Fe { .. } => (self.finite.as_str(), palette::BLUE),
+            Tier::FeRichardson { .. } => (self.richardson.as_str(), palette::VERMILION),
+        }
+    }
+}
+
+/// The panel of one case on the shared `(x, y)` ranges; the first panel carries the legend.
+/// `failed` names the tiers with no curve.
+fn case_panel(
+    c: &CaseMeasurements,
+    first_panel: bool,
+    families: &Families,
+    (x_range, y_range): ((f64, f64), (f64, f64)),
+    failed: &[String],
+) -> Panel {
+    let ms = &c.measurements;
+    let front_points: Vec<(f64, f64)> = c
+        .front
+        .iter()
+        .map(|&i| (ms[i].errors.unwrap().max, ms[i].seconds_per_curve))
+        .collect();
+    let mut series = vec![Series::dashed(
+        first_panel.then(|| "Pareto front".into()),
+        palette::GREY,
+        1,
+        front_points,
+    )];
+    let mut labels: Vec<&str> = vec![];
+    for m in ms {
+        let Some(e) = m.errors else { continue };
+        let (label, color) = families.of_tier(&m.tier);
+        let first = !labels.contains(&label);
+        labels.push(label);
+        series.push(Series::markers(
+            (first_panel && first).then(|| label.to_string()),
+            color,
+            5,
+            vec![(e.max, m.seconds_per_curve)],
+        ));
+    }
+    let fe_path: Vec<(f64, f64)> = ms
+        .iter()
+        .filter(|m| m.tier.is_finite_fe())
+        .filter_map(|m| Some((m.errors?.max, m.seconds_per_curve)))
+        .collect();
+    series.push(Series::line(None, palette::BLUE, 1, fe_path));
+    let mut notes = vec![format!(
+        "reference uncertain by ≤ {}",
+        accuracy::measured::percent(c.reference_uncertainty)
+    )];
+    if !failed.is_empty() {
+        notes.push(format!("no curve: {}", failed.join(", ")));
+    }
+    let (ar, tau) = (c.aspect_ratio, c.tau_max_mpa);
+    Panel {
+        title: format!("AR = {ar}, τ_max = {tau} MPa"),
+        x_label: "largest relative error of p̄/E*".into(),
+        y_label: "wall time per curve, s".into(),
+        x_range,
+        y_range,
+        series,
+        notes,
+        log_scale: (true, true),
+        legend: first_panel.then_some(LegendPosition::LowerLeft),
+    }
 }
 
 /// Whole decades enclosing `values` (positive), for a logarithmic axis.

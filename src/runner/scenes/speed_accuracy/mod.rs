@@ -120,18 +120,10 @@ impl SpeedAccuracyScene {
     }
 }
 
-impl Scene for SpeedAccuracyScene {
-    fn validate(&self, v: &Validator) -> Result<(), SpecError> {
-        v.non_empty("speed_accuracy.aspect_ratios", self.aspect_ratios.len())?;
-        v.non_empty("speed_accuracy.tiers", self.tiers.len())?;
-        v.fe_section("speed_accuracy.fe", &self.fe, None, &self.ars())?;
-        let until = self.fe.until_a_over_lambda.get();
-        v.grid(
-            "speed_accuracy.a_over_lambda",
-            &self.a_over_lambda,
-            (0.0, until),
-            false,
-        )?;
+/// The checks of [`Scene::validate`] beyond the shared ones, one per field.
+impl SpeedAccuracyScene {
+    /// `error_bands`: increasing, from the first to the last value of `a_over_lambda`.
+    fn check_error_bands(&self, v: &Validator) -> Result<(), SpecError> {
         let xs = self.a_over_lambda.values();
         let e = &self.error_bands;
         if !(e.len() >= 2
@@ -150,6 +142,11 @@ impl Scene for SpeedAccuracyScene {
                 ),
             ));
         }
+        Ok(())
+    }
+
+    /// `tiers`: each once, and a Richardson tier's two meshes among them.
+    fn check_tiers(&self, v: &Validator) -> Result<(), SpecError> {
         for (i, t) in self.tiers.iter().enumerate() {
             if self.tiers[..i].contains(t) {
                 return Err(v.invalid(
@@ -176,6 +173,11 @@ impl Scene for SpeedAccuracyScene {
                 }
             }
         }
+        Ok(())
+    }
+
+    /// `order_meshes`: three increasing element counts in range, refined by a constant ratio.
+    fn check_order_meshes(&self, v: &Validator) -> Result<(), SpecError> {
         let range = MeshLevel::ELEMENTS_ALONG_FACE;
         let [coarsest, coarse, fine] = self.order_meshes;
         if !(coarsest < coarse
@@ -195,6 +197,12 @@ impl Scene for SpeedAccuracyScene {
                 ),
             ));
         }
+        Ok(())
+    }
+
+    /// `reference_meshes`: at least three increasing element counts in range.
+    fn check_reference_meshes(&self, v: &Validator) -> Result<(), SpecError> {
+        let range = MeshLevel::ELEMENTS_ALONG_FACE;
         let r = &self.reference_meshes;
         if !(r.len() >= 3
             && r.windows(2).all(|w| w[0] < w[1])
@@ -211,6 +219,12 @@ impl Scene for SpeedAccuracyScene {
                 ),
             ));
         }
+        Ok(())
+    }
+
+    /// The FE section: no mesh or tolerance (the tiers name their meshes, the scene measures
+    /// the errors a tolerance is judged by), finite kinematics (the reference's).
+    fn check_fe_settings(&self, v: &Validator) -> Result<(), SpecError> {
         if let Some(m) = self.fe.mesh {
             return Err(v.invalid(
                 "speed_accuracy.fe.mesh",
@@ -236,6 +250,26 @@ impl Scene for SpeedAccuracyScene {
             ));
         }
         Ok(())
+    }
+}
+
+impl Scene for SpeedAccuracyScene {
+    fn validate(&self, v: &Validator) -> Result<(), SpecError> {
+        v.non_empty("speed_accuracy.aspect_ratios", self.aspect_ratios.len())?;
+        v.non_empty("speed_accuracy.tiers", self.tiers.len())?;
+        v.fe_section("speed_accuracy.fe", &self.fe, None, &self.ars())?;
+        let until = self.fe.until_a_over_lambda.get();
+        v.grid(
+            "speed_accuracy.a_over_lambda",
+            &self.a_over_lambda,
+            (0.0, until),
+            false,
+        )?;
+        self.check_error_bands(v)?;
+        self.check_tiers(v)?;
+        self.check_order_meshes(v)?;
+        self.check_reference_meshes(v)?;
+        self.check_fe_settings(v)
     }
 
     fn fe_cases(&self, _opts: &RunOptions) -> Vec<FeCase> {
@@ -424,69 +458,18 @@ fn measure(
         Tier::Fe {
             kinematics,
             elements_along_face: nx,
-        } => {
-            let o = curve(s, solved, kinematics, nx, ar, tau);
-            let cost = fe_cost(nx, o);
-            match &o.failure {
-                Some(f) => {
-                    let reached = o.last_a_over_lambda();
-                    (
-                        None,
-                        format!("stops at a/λ = {reached:.3}: {f}"),
-                        Some(cost),
-                    )
-                }
-                None => {
-                    let v: Option<Vec<f64>> = xs
-                        .iter()
-                        .map(|&x| convergence::p_at(&o.points, x))
-                        .collect();
-                    let v = v.with_context(|| {
-                        format!("{at}: the curve of {tier} does not cover the a/λ grid")
-                    })?;
-                    (Some(v), "ok".into(), Some(cost))
-                }
-            }
-        }
+        } => fe_tier_values(
+            &xs,
+            curve(s, solved, kinematics, nx, ar, tau),
+            nx,
+            tier,
+            &at,
+        )?,
         Tier::FeRichardson { coarse, fine } => {
             let [c, f] = [coarse, fine].map(|nx| curve(s, solved, Kinematics::Finite, nx, ar, tau));
-            let (cc, fc) = (fe_cost(coarse, c), fe_cost(fine, f));
-            // the unknowns of the larger system; the work of both curves
-            let cost = FeCost {
-                dofs: fc.dofs,
-                load_steps: cc.load_steps + fc.load_steps,
-                newton_iterations: cc.newton_iterations + fc.newton_iterations,
-            };
-            match [(coarse, c), (fine, f)]
-                .iter()
-                .find(|(_, o)| o.failure.is_some())
-            {
-                Some((nx, o)) => {
-                    let reached = o.last_a_over_lambda();
-                    let failure = o.failure.as_ref().expect("found by its failure");
-                    let status = format!("mesh {nx} stops at a/λ = {reached:.3}: {failure}");
-                    (None, status, Some(cost))
-                }
-                None => {
-                    let v = richardson_tier_values((&c.points, coarse), (&f.points, fine), &xs)
-                        .with_context(|| {
-                            format!("{at}: the curves of {tier} do not cover the a/λ grid")
-                        })?;
-                    (Some(v), "ok".into(), Some(cost))
-                }
-            }
+            richardson_values(&xs, (c, coarse), (f, fine), tier, &at)?
         }
-        _ => {
-            let law = tier.law(ar, tau).expect("a closed-form tier has a law");
-            match xs
-                .iter()
-                .map(|&x| law.physical_p_over_estar(x))
-                .collect::<Result<Vec<f64>, _>>()
-            {
-                Ok(v) => (Some(v), "ok".into(), None),
-                Err(e) => (None, format!("unphysical: {e}"), None),
-            }
-        }
+        _ => closed_form_values(&xs, tier, ar, tau),
     };
     let seconds_per_point = tier
         .is_closed_form()
@@ -500,6 +483,76 @@ fn measure(
         fe,
     };
     Ok((m, values))
+}
+
+/// What a tier answers on the a/λ grid `xs` (none where it has no curve there), the status
+/// that says why not, and the FE cost of its curves (none for a closed form).
+type TierValues = (Option<Vec<f64>>, String, Option<FeCost>);
+
+/// The FE tier of the curve `o` on `nx` elements along the face: its p̄/E* on `xs`, or where it
+/// stopped.
+fn fe_tier_values(
+    xs: &[f64],
+    o: &FeOutcome,
+    nx: usize,
+    tier: &Tier,
+    at: &str,
+) -> Result<TierValues> {
+    let cost = fe_cost(nx, o);
+    if let Some(f) = &o.failure {
+        let reached = o.last_a_over_lambda();
+        let status = format!("stops at a/λ = {reached:.3}: {f}");
+        return Ok((None, status, Some(cost)));
+    }
+    let v: Option<Vec<f64>> = xs
+        .iter()
+        .map(|&x| convergence::p_at(&o.points, x))
+        .collect();
+    let v = v.with_context(|| format!("{at}: the curve of {tier} does not cover the a/λ grid"))?;
+    Ok((Some(v), "ok".into(), Some(cost)))
+}
+
+/// The Richardson tier of the curves `coarse` and `fine` (each with its elements along the
+/// face): the extrapolation on `xs`, or which mesh stopped where. Its cost is the unknowns of
+/// the larger system and the work of both curves.
+fn richardson_values(
+    xs: &[f64],
+    coarse: (&FeOutcome, usize),
+    fine: (&FeOutcome, usize),
+    tier: &Tier,
+    at: &str,
+) -> Result<TierValues> {
+    let (cc, fc) = (fe_cost(coarse.1, coarse.0), fe_cost(fine.1, fine.0));
+    let cost = FeCost {
+        dofs: fc.dofs,
+        load_steps: cc.load_steps + fc.load_steps,
+        newton_iterations: cc.newton_iterations + fc.newton_iterations,
+    };
+    if let Some((o, nx)) = [coarse, fine]
+        .into_iter()
+        .find(|(o, _)| o.failure.is_some())
+    {
+        let reached = o.last_a_over_lambda();
+        let failure = o.failure.as_ref().expect("found by its failure");
+        let status = format!("mesh {nx} stops at a/λ = {reached:.3}: {failure}");
+        return Ok((None, status, Some(cost)));
+    }
+    let v = richardson_tier_values((&coarse.0.points, coarse.1), (&fine.0.points, fine.1), xs)
+        .with_context(|| format!("{at}: the curves of {tier} do not cover the a/λ grid"))?;
+    Ok((Some(v), "ok".into(), Some(cost)))
+}
+
+/// A closed-form tier at (AR, τ_max in MPa): its p̄/E* on `xs`, or why it is unphysical there.
+fn closed_form_values(xs: &[f64], tier: &Tier, ar: f64, tau: f64) -> TierValues {
+    let law = tier.law(ar, tau).expect("a closed-form tier has a law");
+    match xs
+        .iter()
+        .map(|&x| law.physical_p_over_estar(x))
+        .collect::<Result<Vec<f64>, _>>()
+    {
+        Ok(v) => (Some(v), "ok".into(), None),
+        Err(e) => (None, format!("unphysical: {e}"), None),
+    }
 }
 
 /// The footer: how the error and the wall time are measured.
