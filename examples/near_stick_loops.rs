@@ -1,4 +1,4 @@
-//! The hysteresis scene's AR 0.3 loops near full stick (μ 1, loaded to a/λ 0.4 and unloaded), two
+//! The hysteresis scene's AR 0.3 loops near full stick (μ 1, loaded to a/λ 0.4 and unloaded), three
 //! studies, one markdown table each:
 //!
 //! - `unloading-steps` (docs/verification.md, "The energy audit"): the default mesh and penalty
@@ -14,14 +14,21 @@
 //!   and three meshes, each 1.5 times the one before (e.g. `meshes 0.1,0.2 48,72,108`), and a
 //!   mean pressure to load to instead of a/λ 0.4 (`meshes 0.2 48,72,108 1`).
 //!
-//! `cargo run --release --example near_stick_loops -- unloading-steps|meshes [TAUS ELEMENTS [P]]`
+//! - `quadrature` (docs/verification.md, "The energy audit"): the default mesh and penalty law,
+//!   τ_max/E* 0.05, 0.1 and 0.2, one loop unloaded in eight steps per loading step; the loop's work
+//!   under other quadratures of the unloading branch (the trapezoid rule on 1, 2, 4 and 8 steps and
+//!   its limit, Simpson's rule on two steps, the end-corrected trapezoid rule on one step with the
+//!   fine steps' one-sided slopes), and the unloading Newton iterations with one and two steps.
+//!   About a minute on two cores.
+//!
+//! `cargo run --release --example near_stick_loops -- unloading-steps|quadrature|meshes [TAUS ELEMENTS [P]]`
 
 use rayon::prelude::*;
 use std::ops::ControlFlow;
 use wavy::accuracy::richardson;
 use wavy::fe::{
-    cycle_friction_work_over_estar_lambda2, cycle_work_over_estar_lambda2, solve_cycle, Interface,
-    Kinematics, LayerProblem, MeshLevel, SolveOptions, StepOptions,
+    cycle_friction_work_over_estar_lambda2, cycle_work_over_estar_lambda2, solve_cycle, Curve,
+    CurvePoint, Interface, Kinematics, LayerProblem, MeshLevel, SolveOptions, StepOptions,
 };
 
 /// The loop's work and the face's work of friction at its end, over E* λ².
@@ -31,16 +38,30 @@ struct LoopEnergy {
     face: f64,
 }
 
-/// One loop: AR 0.3 on the nearly incompressible layer one wavelength thick, μ 1, τ_max/E* `tau`,
-/// elastic slip `elastic_slip_over_element` (0: exact stick), on `mesh`, loaded to a/λ 0.4 (or to
-/// the mean pressure `until_p_over_estar`), unloading each loading interval in
-/// `unloading_substeps` steps.
+/// One loop's energies ([`near_stick_curve`]).
 fn near_stick_loop(
-    (tau, elastic_slip_over_element): (f64, f64),
+    law: (f64, f64),
     mesh: MeshLevel,
     until_p_over_estar: Option<f64>,
     unloading_substeps: usize,
 ) -> LoopEnergy {
+    let curve = near_stick_curve(law, mesh, until_p_over_estar, unloading_substeps);
+    LoopEnergy {
+        work: cycle_work_over_estar_lambda2(&curve.points, &curve.unloading),
+        face: cycle_friction_work_over_estar_lambda2(&curve.unloading),
+    }
+}
+
+/// One loop: AR 0.3 on the nearly incompressible layer one wavelength thick, μ 1, τ_max/E* `tau`,
+/// elastic slip `elastic_slip_over_element` (0: exact stick), on `mesh`, loaded to a/λ 0.4 (or to
+/// the mean pressure `until_p_over_estar`), unloading each loading interval in
+/// `unloading_substeps` steps.
+fn near_stick_curve(
+    (tau, elastic_slip_over_element): (f64, f64),
+    mesh: MeshLevel,
+    until_p_over_estar: Option<f64>,
+    unloading_substeps: usize,
+) -> Curve {
     let problem = LayerProblem {
         aspect_ratio: 0.3,
         finer_harmonics: wavy::profile::FinerHarmonics::NONE,
@@ -62,14 +83,9 @@ fn near_stick_loop(
         },
         ..SolveOptions::default()
     };
-    let curve =
-        solve_cycle(&problem, &opts, &mut |_, _| ControlFlow::Continue(())).unwrap_or_else(|f| {
-            panic!("τ_max/E* {tau}, {mesh:?}, {unloading_substeps} unloading steps: {f}")
-        });
-    LoopEnergy {
-        work: cycle_work_over_estar_lambda2(&curve.points, &curve.unloading),
-        face: cycle_friction_work_over_estar_lambda2(&curve.unloading),
-    }
+    solve_cycle(&problem, &opts, &mut |_, _| ControlFlow::Continue(())).unwrap_or_else(|f| {
+        panic!("τ_max/E* {tau}, {mesh:?}, {unloading_substeps} unloading steps: {f}")
+    })
 }
 
 fn unloading_steps() {
@@ -119,6 +135,110 @@ fn meshes(shear_strengths: &[f64], elements: &[usize], until_p_over_estar: Optio
     }
 }
 
+/// Unloading steps per loading step of the fine loop of [`quadrature`].
+const FINE_SUBSTEPS: usize = 8;
+
+/// `(d/λ, p̄/E*)` of each point.
+fn d_p(points: &[CurvePoint]) -> Vec<(f64, f64)> {
+    (points.iter())
+        .map(|q| (q.slab_displacement_over_lambda, q.p_over_estar))
+        .collect()
+}
+
+/// `∫ p dd` over the points in their order, by the trapezoid rule.
+fn trapezoid(pts: &[(f64, f64)]) -> f64 {
+    (pts.windows(2))
+        .map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0))
+        .sum()
+}
+
+/// The slope `dp/dd` at `pts[0]` of the parabola through `pts[0..3]`.
+fn one_sided_slope(pts: [(f64, f64); 3]) -> f64 {
+    let [(x0, y0), (x1, y1), (x2, y2)] = pts;
+    y0 * (2.0 * x0 - x1 - x2) / ((x0 - x1) * (x0 - x2))
+        + y1 * (x0 - x2) / ((x1 - x0) * (x1 - x2))
+        + y2 * (x0 - x1) / ((x2 - x0) * (x2 - x1))
+}
+
+/// The unloading branch's integral over its coarse intervals (one per loading interval, the
+/// `FINE_SUBSTEPS` fine steps of each), by three rules: the trapezoid on every `FINE_SUBSTEPS / m`-th
+/// point for m = 1, 2, 4, 8; Simpson's rule on the coarse interval's midpoint (what two unloading
+/// steps per loading step give); and the Hermite (end-corrected trapezoid) rule on the coarse
+/// points, `h (p₀ + p₁)/2 + h²/12 (p₀' − p₁')`, with the one-sided slopes of each end read off the
+/// fine points inside the interval (what slopes from the solver's tangent would give).
+struct UnloadingRules {
+    trapezoid: [f64; 4],
+    simpson: f64,
+    hermite: f64,
+}
+
+fn unloading_rules(fine: &[(f64, f64)]) -> UnloadingRules {
+    let n = FINE_SUBSTEPS;
+    let every = |m: usize| -> Vec<(f64, f64)> { fine.iter().copied().step_by(n / m).collect() };
+    let trapezoid = [1, 2, 4, 8].map(|m| trapezoid(&every(m)));
+    let (mut simpson, mut hermite) = (0.0, 0.0);
+    for w in fine.chunks(n).zip(fine.chunks(n).skip(1)) {
+        let (c, next) = w;
+        let (p0, pm, p1) = (c[0], c[n / 2], next[0]);
+        let h = p1.0 - p0.0;
+        simpson += h / 6.0 * (p0.1 + 4.0 * pm.1 + p1.1);
+        let slope0 = one_sided_slope([c[0], c[1], c[2]]);
+        let slope1 = one_sided_slope([next[0], c[n - 1], c[n - 2]]);
+        hermite += h * (p0.1 + p1.1) / 2.0 + h * h / 12.0 * (slope0 - slope1);
+    }
+    UnloadingRules {
+        trapezoid,
+        simpson,
+        hermite,
+    }
+}
+
+/// What the loop's work `∮ p̄ dd` would be under other quadratures of the unloading branch, on the
+/// scene's loops (default mesh, penalty law), from one loop unloaded in `FINE_SUBSTEPS` steps per
+/// loading step: the trapezoid rule on 1, 2, 4 and 8 steps (the unloading branch does not move
+/// with them, docs/verification.md), their second-order Richardson limit from 4 and 8, Simpson's
+/// rule on two steps and the Hermite rule on one; and the unloading Newton iterations of the loop
+/// solved with one and with two unloading steps per loading step.
+fn quadrature() {
+    let taus = [0.05, 0.1, 0.2];
+    let runs: Vec<(f64, usize)> = (taus.iter())
+        .flat_map(|&t| [1, 2, FINE_SUBSTEPS].map(|m| (t, m)))
+        .collect();
+    let curves: Vec<Curve> = runs
+        .par_iter()
+        .map(|&(t, m)| near_stick_curve((t, 0.005), MeshLevel::Default, None, m))
+        .collect();
+    println!("| τ_max/E* | trapezoid, 1 / 2 / 4 / 8 steps | limit | Simpson, 2 steps | Hermite, 1 step | W / limit − 1: trapezoid 1 step, Simpson 2, Hermite 1 | unloading Newton iterations, 1 / 2 steps |");
+    println!("|---|---|---|---|---|---|---|");
+    for (tau, c) in taus.iter().zip(curves.chunks(3)) {
+        let iterations =
+            |curve: &Curve| -> usize { curve.unloading.iter().map(|q| q.newton_iterations).sum() };
+        let fine = &c[2];
+        let loading = d_p(&fine.points);
+        let load_work = trapezoid(&[&[(0.0, 0.0)][..], &loading].concat());
+        let unloading = d_p(&fine.unloading);
+        let branch = [&loading[loading.len() - 1..], &unloading].concat();
+        let rules = unloading_rules(&branch);
+        let w = rules.trapezoid.map(|u| load_work + u);
+        let limit = w[3] + (w[3] - w[2]) / 3.0;
+        let simpson = load_work + rules.simpson;
+        let hermite = load_work + rules.hermite;
+        let rel = |x: f64| 100.0 * (x / limit - 1.0);
+        println!(
+            "| {tau} | {:.4e} / {:.4e} / {:.4e} / {:.4e} | {limit:.4e} | {simpson:.4e} | {hermite:.4e} | {:+.2} % / {:+.2} % / {:+.2} % | {} / {} |",
+            w[0],
+            w[1],
+            w[2],
+            w[3],
+            rel(w[0]),
+            rel(simpson),
+            rel(hermite),
+            iterations(&c[0]),
+            iterations(&c[1]),
+        );
+    }
+}
+
 /// A comma-separated list of numbers, or the usage error.
 fn list<T: std::str::FromStr>(text: Option<&String>) -> Option<Vec<T>> {
     text.and_then(|t| t.split(',').map(|v| v.parse().ok()).collect())
@@ -128,6 +248,7 @@ fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match (args.first().map(String::as_str), args.len()) {
         (Some("unloading-steps"), 1) => unloading_steps(),
+        (Some("quadrature"), 1) => quadrature(),
         (Some("meshes"), 1) => meshes(&[0.05, 0.1, 0.15, 0.2], &[32, 48, 72], None),
         (Some("meshes"), 3 | 4) => {
             let until_p = args.get(3).map(|p| p.parse::<f64>().ok());
@@ -147,6 +268,8 @@ fn main() {
 }
 
 fn usage() {
-    eprintln!("usage: near_stick_loops unloading-steps | meshes [TAU,… N1,N2,N3 [P_OVER_ESTAR]]");
+    eprintln!(
+        "usage: near_stick_loops unloading-steps | quadrature | meshes [TAU,… N1,N2,N3 [P_OVER_ESTAR]]"
+    );
     std::process::exit(2);
 }
