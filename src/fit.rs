@@ -76,6 +76,34 @@ pub fn refit(
     reading: Reading,
     domain: FitDomain,
 ) -> Result<Refit, FitError> {
+    check_samples(samples)?;
+    let rows: Vec<[f64; 12]> = samples.iter().map(|s| regressors(s, reading)).collect();
+    let (theta, condition_number) = least_squares(&rows, samples)?;
+    let mut b = [0.0; 6];
+    let mut a = [0.0; 6];
+    b.copy_from_slice(&theta[..6]);
+    a.copy_from_slice(&theta[6..]);
+    let coefficients = Coefficients { a, b, domain };
+
+    // Residual r = J θ − y in the unscaled problem.
+    let residual: Vec<f64> = rows
+        .iter()
+        .zip(samples)
+        .map(|(r, s)| r.iter().zip(&theta).map(|(u, t)| u * t).sum::<f64>() - s.p_over_estar)
+        .collect();
+    let r_norm = residual.iter().map(|r| r * r).sum::<f64>().sqrt();
+    Ok(Refit {
+        reading,
+        coefficients,
+        mse: r_norm * r_norm / samples.len() as f64,
+        samples: samples.len(),
+        relative_optimality: relative_optimality(&rows, &residual),
+        condition_number,
+    })
+}
+
+/// At least twelve samples, every number finite.
+fn check_samples(samples: &[CurveSample]) -> Result<(), FitError> {
     let n = samples.len();
     if n < 12 {
         return Err(FitError::TooFewSamples { samples: n });
@@ -95,7 +123,13 @@ pub fn refit(
             sample: *sample,
         });
     }
-    let rows: Vec<[f64; 12]> = samples.iter().map(|s| regressors(s, reading)).collect();
+    Ok(())
+}
+
+/// The coefficients `θ` minimising `‖J θ − y‖` (`J` the regressor `rows`, `y` the samples'
+/// p̄/E*), solved with each column scaled to unit norm by a column-pivoted QR, and the scaled
+/// design's condition number; an error where it is rank deficient (condition above 10¹²).
+fn least_squares(rows: &[[f64; 12]], samples: &[CurveSample]) -> Result<(Vec<f64>, f64), FitError> {
     let scale: Vec<f64> = (0..12)
         .map(|j| {
             rows.iter()
@@ -105,8 +139,8 @@ pub fn refit(
                 .max(f64::MIN_POSITIVE)
         })
         .collect();
-    let design = Mat::from_fn(n, 12, |i, j| rows[i][j] / scale[j]);
-    let rhs = Mat::from_fn(n, 1, |i, _| samples[i].p_over_estar);
+    let design = Mat::from_fn(rows.len(), 12, |i, j| rows[i][j] / scale[j]);
+    let rhs = Mat::from_fn(rows.len(), 1, |i, _| samples[i].p_over_estar);
 
     let sv = design.singular_values().map_err(|_| FitError::Svd)?;
     let (smax, smin) = sv.iter().fold((0.0_f64, f64::INFINITY), |(hi, lo), &s| {
@@ -117,20 +151,13 @@ pub fn refit(
         return Err(FitError::RankDeficient { condition_number });
     }
     let solution = design.col_piv_qr().solve_lstsq(&rhs);
-    let theta: Vec<f64> = (0..12).map(|j| solution[(j, 0)] / scale[j]).collect();
+    let theta = (0..12).map(|j| solution[(j, 0)] / scale[j]).collect();
+    Ok((theta, condition_number))
+}
 
-    let mut b = [0.0; 6];
-    let mut a = [0.0; 6];
-    b.copy_from_slice(&theta[..6]);
-    a.copy_from_slice(&theta[6..]);
-    let coefficients = Coefficients { a, b, domain };
-
-    // Residual r = J θ − y in the unscaled problem, and the optimality ‖Jᵀr‖/(‖J‖‖r‖).
-    let residual: Vec<f64> = rows
-        .iter()
-        .zip(samples)
-        .map(|(r, s)| r.iter().zip(&theta).map(|(u, t)| u * t).sum::<f64>() - s.p_over_estar)
-        .collect();
+/// The optimality of a least-squares solution, `‖Jᵀr‖/(‖J‖‖r‖)` (0 for a zero residual): the
+/// cosine between the residual `r` and the regressor `rows`' column space.
+fn relative_optimality(rows: &[[f64; 12]], residual: &[f64]) -> f64 {
     let r_norm = residual.iter().map(|r| r * r).sum::<f64>().sqrt();
     let j_norm = rows
         .iter()
@@ -141,27 +168,18 @@ pub fn refit(
     let jtr: f64 = (0..12)
         .map(|j| {
             rows.iter()
-                .zip(&residual)
+                .zip(residual)
                 .map(|(r, e)| r[j] * e)
                 .sum::<f64>()
                 .powi(2)
         })
         .sum::<f64>()
         .sqrt();
-    let relative_optimality = if r_norm == 0.0 {
+    if r_norm == 0.0 {
         0.0
     } else {
         jtr / (j_norm * r_norm)
-    };
-    let mse = r_norm * r_norm / n as f64;
-    Ok(Refit {
-        reading,
-        coefficients,
-        mse,
-        samples: n,
-        relative_optimality,
-        condition_number,
-    })
+    }
 }
 
 /// Mean squared error of p̄/E* of the WNL law (`reading`, `coefficients`) over `samples`.

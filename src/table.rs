@@ -120,6 +120,50 @@ impl Table {
         rel_tol: f64,
         abs_tol: f64,
     ) -> Result<Comparison, CompareError> {
+        let expected = self.expected_records(expected_csv)?;
+        let mut out = Comparison {
+            deviations: vec![],
+            failures: 0,
+            numbers: 0,
+        };
+        for (i, (row, rec)) in self.rows.iter().zip(&expected).enumerate() {
+            for (j, (cell, want)) in row.iter().zip(rec.iter()).enumerate() {
+                let column = self.header[j].clone();
+                let deviation = match (cell, want.parse::<f64>()) {
+                    (Cell::Num(x), Ok(e)) => {
+                        out.numbers += 1;
+                        number_deviation(*x, (want, e), (rel_tol, abs_tol), i + 1, column)
+                    }
+                    _ => {
+                        let found = cell.to_string();
+                        Deviation {
+                            row: i + 1,
+                            panel: String::new(),
+                            column,
+                            pass: found == want,
+                            relative: if found == want { 0.0 } else { f64::INFINITY },
+                            expected: want.into(),
+                            found,
+                        }
+                    }
+                };
+                if !deviation.pass {
+                    out.failures += 1;
+                }
+                out.deviations.push(deviation);
+            }
+        }
+        out.deviations.sort_by(|a, b| {
+            (a.pass, -a.relative)
+                .partial_cmp(&(b.pass, -b.relative))
+                .unwrap_or(std::cmp::Ordering::Equal)
+        });
+        Ok(out)
+    }
+
+    /// The rows of the golden CSV text, after checking that its header is this table's and that
+    /// it has as many rows.
+    fn expected_records(&self, expected_csv: &str) -> Result<Vec<csv::StringRecord>, CompareError> {
         let mut r = csv::ReaderBuilder::new()
             .has_headers(true)
             .from_reader(expected_csv.as_bytes());
@@ -145,60 +189,36 @@ impl Table {
                 found: self.rows.len(),
             });
         }
-        let mut out = Comparison {
-            deviations: vec![],
-            failures: 0,
-            numbers: 0,
-        };
-        for (i, (row, rec)) in self.rows.iter().zip(&expected).enumerate() {
-            for (j, (cell, want)) in row.iter().zip(rec.iter()).enumerate() {
-                let deviation = match (cell, want.parse::<f64>()) {
-                    (Cell::Num(x), Ok(e)) => {
-                        out.numbers += 1;
-                        let abs = (x - e).abs();
-                        let allowed = abs_tol + rel_tol * e.abs();
-                        let both_nan = x.is_nan() && e.is_nan();
-                        Deviation {
-                            row: i + 1,
-                            panel: String::new(),
-                            column: self.header[j].clone(),
-                            expected: want.into(),
-                            found: numfmt::sig(*x),
-                            relative: if both_nan {
-                                0.0
-                            } else if e != 0.0 {
-                                abs / e.abs()
-                            } else {
-                                abs
-                            },
-                            pass: both_nan || abs <= allowed,
-                        }
-                    }
-                    _ => {
-                        let found = cell.to_string();
-                        Deviation {
-                            row: i + 1,
-                            panel: String::new(),
-                            column: self.header[j].clone(),
-                            pass: found == want,
-                            relative: if found == want { 0.0 } else { f64::INFINITY },
-                            expected: want.into(),
-                            found,
-                        }
-                    }
-                };
-                if !deviation.pass {
-                    out.failures += 1;
-                }
-                out.deviations.push(deviation);
-            }
-        }
-        out.deviations.sort_by(|a, b| {
-            (a.pass, -a.relative)
-                .partial_cmp(&(b.pass, -b.relative))
-                .unwrap_or(std::cmp::Ordering::Equal)
-        });
-        Ok(out)
+        Ok(expected)
+    }
+}
+
+/// The deviation of the number `found` from the golden cell `(text, value)` in data row `row` of
+/// `column`: it passes within `abs_tol + rel_tol·|expected|`, or where both are NaN.
+fn number_deviation(
+    found: f64,
+    (text, expected): (&str, f64),
+    (rel_tol, abs_tol): (f64, f64),
+    row: usize,
+    column: String,
+) -> Deviation {
+    let abs = (found - expected).abs();
+    let allowed = abs_tol + rel_tol * expected.abs();
+    let both_nan = found.is_nan() && expected.is_nan();
+    Deviation {
+        row,
+        panel: String::new(),
+        column,
+        expected: text.into(),
+        found: numfmt::sig(found),
+        relative: if both_nan {
+            0.0
+        } else if expected != 0.0 {
+            abs / expected.abs()
+        } else {
+            abs
+        },
+        pass: both_nan || abs <= allowed,
     }
 }
 

@@ -209,42 +209,23 @@ impl FrictionalContact {
     /// The increment from the committed state to the mean pressure `p_over_estar` (not
     /// committed).
     pub fn increment(&mut self, p_over_estar: f64) -> Result<Increment, BemError> {
-        if !(p_over_estar.is_finite() && p_over_estar > 0.0) {
-            return Err(BemError::InvalidInput {
-                field: "mean pressure p̄/E*",
-                value: p_over_estar,
-                allowed: "finite, > 0",
-            });
-        }
-        if p_over_estar >= self.full_contact {
-            return Err(BemError::FullContact {
-                p_over_estar,
-                full_contact: self.full_contact,
-            });
-        }
-        let n = self.depth.len();
+        self.check_mean_pressure(p_over_estar)?;
+        let (n, tol) = (self.depth.len(), self.tol);
         let stalled = |s: Stalled| BemError::NoConvergence {
             p_over_estar,
             points: n,
             iterations: s.iterations,
             residual: s.residual,
-            tol: self.tol,
+            tol,
             reason: s.reason,
         };
         let mut q = self.committed.shear_over_estar.clone();
         let mut p = self.committed.pressure_over_estar.clone();
-        let mut shifted = self.depth.clone();
-        let mut scratch = vec![0.0; n];
         let mut iterations = 0;
         let max_iterations = super::max_iterations(n);
         let mut change = f64::INFINITY;
         for pass in 1..=MAX_PASSES {
-            if self.coupling == NormalCoupling::Full && !self.coupling_op.is_zero() {
-                self.coupling_op.apply_hilbert(&q, &mut scratch);
-                for ((si, &di), &hi) in shifted.iter_mut().zip(&self.depth).zip(&scratch) {
-                    *si = di + hi;
-                }
-            }
+            let shifted = self.shifted_surface(&q);
             let normal = polonsky_keer::solve(
                 Some(p),
                 &shifted,
@@ -255,27 +236,9 @@ impl FrictionalContact {
             )
             .map_err(stalled)?;
             iterations += normal.iterations;
-            let bound: Vec<f64> = normal
-                .pressure
-                .iter()
-                .map(|&pi| self.law.threshold(pi))
-                .collect();
-            self.coupling_op
-                .apply_hilbert(&normal.pressure, &mut scratch);
-            let b: Vec<f64> = scratch
-                .iter()
-                .zip(&self.committed.tangential_displacement_over_lambda)
-                .map(|(&hp, &u0)| -hp - u0)
-                .collect();
-            let shear = shear_active_set::solve(
-                q.clone(),
-                &b,
-                &bound,
-                &mut self.tangential_op,
-                self.tol_abs,
-                max_iterations,
-            )
-            .map_err(stalled)?;
+            let shear = self
+                .tangential(&normal.pressure, q.clone(), max_iterations)
+                .map_err(stalled)?;
             iterations += shear.iterations;
             change = q
                 .iter()
@@ -302,6 +265,66 @@ impl FrictionalContact {
             residual: change * self.tangential_op.diagonal() / self.tol_abs,
             reason: "the normal–tangential alternation did not settle",
         }))
+    }
+
+    /// A mean pressure an increment can reach: finite, positive and below full contact.
+    fn check_mean_pressure(&self, p_over_estar: f64) -> Result<(), BemError> {
+        if !(p_over_estar.is_finite() && p_over_estar > 0.0) {
+            return Err(BemError::InvalidInput {
+                field: "mean pressure p̄/E*",
+                value: p_over_estar,
+                allowed: "finite, > 0",
+            });
+        }
+        if p_over_estar >= self.full_contact {
+            return Err(BemError::FullContact {
+                p_over_estar,
+                full_contact: self.full_contact,
+            });
+        }
+        Ok(())
+    }
+
+    /// The surface the normal problem sees at the shear `q`: the profile's depth shifted by the
+    /// normal displacement the shear makes, `β K H q` (the depth itself under Goodman's
+    /// approximation or without coupling).
+    fn shifted_surface(&mut self, q: &[f64]) -> Vec<f64> {
+        let mut shifted = self.depth.clone();
+        if self.coupling == NormalCoupling::Full && !self.coupling_op.is_zero() {
+            let mut scratch = vec![0.0; q.len()];
+            self.coupling_op.apply_hilbert(q, &mut scratch);
+            for (si, &hi) in shifted.iter_mut().zip(&scratch) {
+                *si += hi;
+            }
+        }
+        shifted
+    }
+
+    /// The tangential problem at the pressure `pressure`, from the shear `start`: the shear
+    /// bounded by the law's threshold whose slip from the committed tangential displacement
+    /// obeys the law.
+    fn tangential(
+        &mut self,
+        pressure: &[f64],
+        start: Vec<f64>,
+        max_iterations: usize,
+    ) -> Result<shear_active_set::ShearSolution, Stalled> {
+        let bound: Vec<f64> = pressure.iter().map(|&pi| self.law.threshold(pi)).collect();
+        let mut scratch = vec![0.0; pressure.len()];
+        self.coupling_op.apply_hilbert(pressure, &mut scratch);
+        let b: Vec<f64> = scratch
+            .iter()
+            .zip(&self.committed.tangential_displacement_over_lambda)
+            .map(|(&hp, &u0)| -hp - u0)
+            .collect();
+        shear_active_set::solve(
+            start,
+            &b,
+            &bound,
+            &mut self.tangential_op,
+            self.tol_abs,
+            max_iterations,
+        )
     }
 
     /// The increment's measures from its converged fields.

@@ -207,60 +207,41 @@ pub fn compare(
     let names: std::collections::BTreeSet<&String> =
         base_panels.keys().chain(new_panels.keys()).collect();
     for name in names {
-        let (b_rows, n_rows) = (
-            base_panels.get(name).map_or(&[][..], |v| &v[..]),
-            new_panels.get(name).map_or(&[][..], |v| &v[..]),
-        );
+        let sides = PanelSides {
+            base,
+            new,
+            base_rows: base_panels.get(name).map_or(&[][..], |v| &v[..]),
+            new_rows: new_panels.get(name).map_or(&[][..], |v| &v[..]),
+        };
         let mut change = PanelChange {
             panel: name.clone(),
             columns: vec![],
-            rows_added: n_rows.len().saturating_sub(b_rows.len()),
-            rows_removed: b_rows.len().saturating_sub(n_rows.len()),
+            rows_added: sides.new_rows.len().saturating_sub(sides.base_rows.len()),
+            rows_removed: sides.base_rows.len().saturating_sub(sides.new_rows.len()),
             text_changes: vec![],
         };
         for column in &roles.values {
             let (Some(bj), Some(nj)) = (base.column(column), new.column(column)) else {
                 continue;
             };
-            let mut ex = Extremes::new();
-            let bx = roles.x.as_ref().and_then(|x| base.column(x));
-            let nx = roles.x.as_ref().and_then(|x| new.column(x));
-            let numeric = |t: &CsvTable, rows: &[usize], j: usize| {
-                rows.iter()
-                    .all(|&i| t.rows[i][j].is_empty() || t.rows[i][j].parse::<f64>().is_ok())
-            };
-            if !(numeric(base, b_rows, bj) && numeric(new, n_rows, nj)) {
-                for (&bi, &ni) in b_rows.iter().zip(n_rows) {
-                    let (b, n) = (&base.rows[bi][bj], &new.rows[ni][nj]);
+            if !sides.numeric((bj, nj)) {
+                for (b, n) in sides.cells((bj, nj)) {
                     if b != n && change.text_changes.len() < 3 {
                         change.text_changes.push(format!("{column}: {b} → {n}"));
                     }
                 }
                 continue;
             }
-            if let (Some(bx), Some(nx)) = (bx, nx) {
-                let bc = curve(base, b_rows, bx, bj);
-                for (x, y) in curve(new, n_rows, nx, nj) {
-                    if let Some(b) = interpolate(&bc, x) {
-                        ex.add(b, y, rel_tol, abs_tol);
-                    }
-                }
-            } else {
-                for (&bi, &ni) in b_rows.iter().zip(n_rows) {
-                    if let (Ok(b), Ok(n)) = (
-                        base.rows[bi][bj].parse::<f64>(),
-                        new.rows[ni][nj].parse::<f64>(),
-                    ) {
-                        ex.add(b, n, rel_tol, abs_tol);
-                    }
-                }
-            }
-            let single = (b_rows.len() == 1 && n_rows.len() == 1 && ex.max_abs > 0.0).then(|| {
-                (
-                    base.rows[b_rows[0]][bj].clone(),
-                    new.rows[n_rows[0]][nj].clone(),
-                )
-            });
+            let ex = sides.extremes(&roles, (bj, nj), (rel_tol, abs_tol));
+            let single = (sides.base_rows.len() == 1
+                && sides.new_rows.len() == 1
+                && ex.max_abs > 0.0)
+                .then(|| {
+                    (
+                        base.rows[sides.base_rows[0]][bj].clone(),
+                        new.rows[sides.new_rows[0]][nj].clone(),
+                    )
+                });
             change.columns.push(ColumnChange {
                 column: column.clone(),
                 max_abs: ex.max_abs,
@@ -276,6 +257,60 @@ pub fn compare(
         roles,
         header_changed,
         panels: out,
+    }
+}
+
+/// One panel's rows in the base and the new table.
+struct PanelSides<'a> {
+    base: &'a CsvTable,
+    new: &'a CsvTable,
+    base_rows: &'a [usize],
+    new_rows: &'a [usize],
+}
+
+impl PanelSides<'_> {
+    /// Whether the column (index in the base, in the new table) holds numbers or empty cells on
+    /// both sides.
+    fn numeric(&self, (bj, nj): (usize, usize)) -> bool {
+        let numeric = |t: &CsvTable, rows: &[usize], j: usize| {
+            rows.iter()
+                .all(|&i| t.rows[i][j].is_empty() || t.rows[i][j].parse::<f64>().is_ok())
+        };
+        numeric(self.base, self.base_rows, bj) && numeric(self.new, self.new_rows, nj)
+    }
+
+    /// The column's cells, base and new, row by row.
+    fn cells(&self, (bj, nj): (usize, usize)) -> impl Iterator<Item = (&String, &String)> {
+        (self.base_rows.iter().zip(self.new_rows))
+            .map(move |(&bi, &ni)| (&self.base.rows[bi][bj], &self.new.rows[ni][nj]))
+    }
+
+    /// The largest changes of a numeric column: against the base curve interpolated at the new
+    /// points' x where the table has an x column, else row by row.
+    fn extremes(
+        &self,
+        roles: &ColumnRoles,
+        (bj, nj): (usize, usize),
+        (rel_tol, abs_tol): (f64, f64),
+    ) -> Extremes {
+        let mut ex = Extremes::new();
+        let bx = roles.x.as_ref().and_then(|x| self.base.column(x));
+        let nx = roles.x.as_ref().and_then(|x| self.new.column(x));
+        if let (Some(bx), Some(nx)) = (bx, nx) {
+            let bc = curve(self.base, self.base_rows, bx, bj);
+            for (x, y) in curve(self.new, self.new_rows, nx, nj) {
+                if let Some(b) = interpolate(&bc, x) {
+                    ex.add(b, y, rel_tol, abs_tol);
+                }
+            }
+        } else {
+            for (b, n) in self.cells((bj, nj)) {
+                if let (Ok(b), Ok(n)) = (b.parse::<f64>(), n.parse::<f64>()) {
+                    ex.add(b, n, rel_tol, abs_tol);
+                }
+            }
+        }
+        ex
     }
 }
 

@@ -48,33 +48,7 @@ impl SolveRequest {
     /// finite-element solver first, [`SolveRequest::check_ranges`]).
     pub fn prepare_bem(&self) -> Result<PreparedBemSolve, RequestError> {
         self.check_ranges()?;
-        if self.kinematics != Kinematics::Linear {
-            return Err(refused(
-                "--kinematics",
-                self.kinematics.name(),
-                "the boundary-element solver is small-strain: pass --kinematics linear",
-            ));
-        }
-        let fe_only = [
-            ("--mesh", self.mesh.is_some()),
-            ("--tolerance", self.tolerance.is_some()),
-            ("--error-estimate", self.error_estimate),
-            ("--max-memory", self.max_memory.is_some()),
-        ];
-        if let Some((flag, _)) = fe_only.iter().find(|(_, given)| *given) {
-            return Err(refused(
-                flag,
-                "given",
-                "belongs to the finite-element solver; the boundary-element solver's grid is --grid-points",
-            ));
-        }
-        if let Some(n) = self.unloading_substeps {
-            return Err(refused(
-                "--unloading-substeps",
-                n,
-                "belongs to the finite-element solver; the boundary-element solver unloads back through its loading pressures",
-            ));
-        }
+        self.check_bem_flags()?;
         let profile = Profile {
             aspect_ratio: self.ar,
             finer: self.finer_harmonics,
@@ -92,21 +66,7 @@ impl SolveRequest {
                 poisson,
             }
         };
-        let grid_points = self
-            .grid_points
-            .unwrap_or_else(|| default_grid_points(&profile));
-        let minimum = bem::min_points_per_wavelength(&profile);
-        if !grid_points.is_power_of_two()
-            || grid_points < minimum
-            || grid_points > bem::MAX_POINTS_PER_WAVELENGTH
-        {
-            return Err(InputError::OutOfRange {
-                flag: "--grid-points".into(),
-                value: grid_points.to_string(),
-                allowed: format!("a power of two in [{minimum}, 2^24] for this profile"),
-            }
-            .into());
-        }
+        let grid_points = self.bem_grid_points(&profile)?;
         let points = self.points.unwrap_or(DEFAULT_POINTS);
         if !(2..=10_000).contains(&points) {
             return Err(InputError::OutOfRange {
@@ -134,6 +94,60 @@ impl SolveRequest {
                 unload: self.unload,
             },
         })
+    }
+
+    /// Refuses what the boundary-element solver does not model (finite kinematics) and the
+    /// flags of the finite-element solver.
+    fn check_bem_flags(&self) -> Result<(), RequestError> {
+        if self.kinematics != Kinematics::Linear {
+            return Err(refused(
+                "--kinematics",
+                self.kinematics.name(),
+                "the boundary-element solver is small-strain: pass --kinematics linear",
+            ));
+        }
+        let fe_only = [
+            ("--mesh", self.mesh.is_some()),
+            ("--tolerance", self.tolerance.is_some()),
+            ("--error-estimate", self.error_estimate),
+            ("--max-memory", self.max_memory.is_some()),
+        ];
+        if let Some((flag, _)) = fe_only.iter().find(|(_, given)| *given) {
+            return Err(refused(
+                flag,
+                "given",
+                "belongs to the finite-element solver; the boundary-element solver's grid is --grid-points",
+            ));
+        }
+        if let Some(n) = self.unloading_substeps {
+            return Err(refused(
+                "--unloading-substeps",
+                n,
+                "belongs to the finite-element solver; the boundary-element solver unloads back through its loading pressures",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The grid points per wavelength, given or the profile's default: a power of two from the
+    /// profile's minimum to [`bem::MAX_POINTS_PER_WAVELENGTH`].
+    fn bem_grid_points(&self, profile: &Profile) -> Result<usize, RequestError> {
+        let grid_points = self
+            .grid_points
+            .unwrap_or_else(|| default_grid_points(profile));
+        let minimum = bem::min_points_per_wavelength(profile);
+        if !grid_points.is_power_of_two()
+            || grid_points < minimum
+            || grid_points > bem::MAX_POINTS_PER_WAVELENGTH
+        {
+            return Err(InputError::OutOfRange {
+                flag: "--grid-points".into(),
+                value: grid_points.to_string(),
+                allowed: format!("a power of two in [{minimum}, 2^24] for this profile"),
+            }
+            .into());
+        }
+        Ok(grid_points)
     }
 }
 

@@ -116,23 +116,16 @@ fn surfaces_table(s: &CorrectionSurfacesScene, c: &Coefficients) -> (Table, bool
     (table, any_extrapolated)
 }
 
-/// The two panels of one correction: against τ_max, one line per aspect ratio (the FE ones
-/// solid and thick); against AR, one line per τ_max with the FE aspect ratios as guides.
-fn correction_panels(
-    s: &CorrectionSurfacesScene,
-    correction: Correction,
-    c: &Coefficients,
-) -> [Panel; 2] {
-    let ars = s.aspect_ratio.values();
+/// One line per aspect ratio of `line_aspect_ratios` against τ_max: those of `marked` (the FE
+/// aspect ratios) solid and thick, the others dashed.
+fn against_tau(s: &CorrectionSurfacesScene, coeffs: &[f64; 6], marked: &[f64]) -> Vec<Series> {
     let taus = s.tau_max_mpa.values();
-    let marked: Vec<f64> = s.marked_aspect_ratios.iter().map(|v| v.get()).collect();
     let is_marked = |ar: f64| {
         marked
             .iter()
             .any(|m| (m - ar).abs() <= 1e-12 * m.abs().max(1.0))
     };
-    let (name, coeffs) = (correction.name(), correction.of(c));
-    let mut vs_tau = vec![];
+    let mut series = vec![];
     for (k, ar) in s.line_aspect_ratios.iter().map(|v| v.get()).enumerate() {
         let pts: Vec<(f64, f64)> = taus
             .iter()
@@ -143,26 +136,48 @@ fn correction_panels(
             "AR = {ar}{}",
             if is_marked(ar) { " (FE)" } else { "" }
         ));
-        vs_tau.push(if is_marked(ar) {
+        series.push(if is_marked(ar) {
             Series::line(label, color, 3, pts)
         } else {
             Series::dashed(label, color, 1, pts)
         });
     }
-    let mut vs_ar = vec![];
+    series
+}
+
+/// One line per shear strength of `line_tau_max_mpa` against the aspect ratio.
+fn against_ar(s: &CorrectionSurfacesScene, coeffs: &[f64; 6]) -> Vec<Series> {
+    let ars = s.aspect_ratio.values();
+    let mut series = vec![];
     for (k, tau) in s.line_tau_max_mpa.iter().map(|v| v.get()).enumerate() {
         let pts: Vec<(f64, f64)> = ars
             .iter()
             .map(|&r| (r, quadratic_surface(coeffs, r, tau)))
             .collect();
         let color = palette::CYCLE[k % palette::CYCLE.len()];
-        vs_ar.push(Series::line(
+        series.push(Series::line(
             Some(format!("τ_max = {tau} MPa")),
             color,
             2,
             pts,
         ));
     }
+    series
+}
+
+/// The two panels of one correction: against τ_max, one line per aspect ratio (the FE ones
+/// solid and thick); against AR, one line per τ_max with the FE aspect ratios as guides.
+fn correction_panels(
+    s: &CorrectionSurfacesScene,
+    correction: Correction,
+    c: &Coefficients,
+) -> [Panel; 2] {
+    let ars = s.aspect_ratio.values();
+    let taus = s.tau_max_mpa.values();
+    let marked: Vec<f64> = s.marked_aspect_ratios.iter().map(|v| v.get()).collect();
+    let (name, coeffs) = (correction.name(), correction.of(c));
+    let vs_tau = against_tau(s, coeffs, &marked);
+    let mut vs_ar = against_ar(s, coeffs);
     let all = |series: &[Series]| {
         series
             .iter()
