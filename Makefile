@@ -117,7 +117,7 @@ reference:
 ## docs/verification.md, "Robustness grid"; the cheap meshes of its test went to
 ## experiments/data/robustness_grid_cheap.csv).
 ROBUSTNESS_MESHES ?= 48,96,160
-ROBUSTNESS_TIMEOUT_S ?= 300
+ROBUSTNESS_TIMEOUT_S ?= 1200
 ROBUSTNESS_CSV ?= experiments/data/robustness_grid.csv
 robustness:
 	$(CARGO) build --release --locked
