@@ -4,7 +4,8 @@
 //! AR 0.3 and 0.4 are not here: on this mesh the layer loses stability before a/λ 0.45, without
 //! friction too (docs/verification.md, "Robustness grid", where the full grid at meshes 48–160,
 //! `make robustness`, and these cheap meshes are tabled); that the solver names that loss of
-//! stability when it stops is tested here. One test per AR, so that the harness spreads them over
+//! stability when it stops is tested here, and that it names the friction law's Coulomb–Orowan
+//! crossover where unloading with μ 100 stops. One test per AR, so that the harness spreads them over
 //! the cores.
 use std::ops::ControlFlow;
 use wavy::fe::{solve_cycle, Curve, Interface, LayerProblem, MeshLevel, SolveOptions};
@@ -135,5 +136,37 @@ fn a_coarse_layer_losing_stability_is_named_in_the_message() {
         complete.is_ok(),
         "AR 0.3 on 32 elements: {:?}",
         complete.err().map(|f| f.to_string())
+    );
+}
+
+/// Where unloading with a nearly pure Orowan law (μ 100) stops, the message names the node at
+/// the friction law's Coulomb–Orowan crossover that carries the largest residual: the AR 0.3,
+/// τ_max/E* 0.1 loop on 32 face elements stops there (docs/verification.md, "Robustness
+/// grid"), and a stop of another kind, the frictional AR 0.4 curve losing stability while
+/// loading on [`MESH`] elements, names no crossover.
+#[test]
+fn an_unloading_stall_at_the_friction_crossover_is_named_in_the_message() {
+    let slip = wavy::defaults::elastic_slip_over_element();
+    let opts = SolveOptions {
+        mesh: MeshLevel::along_face(32),
+        until_a_over_lambda: 0.45,
+        ..SolveOptions::default()
+    };
+    let stalled = problem(0.3, Interface::coulomb_orowan(100.0, 0.1, slip));
+    let message = solve_cycle(&stalled, &opts, &mut |_, _| ControlFlow::Continue(()))
+        .map(|_| ())
+        .expect_err("unloading stalls at μ 100")
+        .to_string();
+    assert!(
+        message.contains("unloading stopped")
+            && message.contains("Coulomb–Orowan crossover")
+            && message.contains("contact-face node"),
+        "{message}"
+    );
+    let loading = cycle(&problem(0.4, Interface::coulomb_orowan(0.2, 0.05, slip)))
+        .expect_err("the coarse layer loses stability while loading");
+    assert!(
+        loading.contains("Newton diverged") && !loading.contains("crossover"),
+        "{loading}"
     );
 }

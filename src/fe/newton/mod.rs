@@ -183,6 +183,8 @@ pub(crate) fn newton(
 ) -> Result<usize, StepFail> {
     let mut last_res = f64::NAN;
     let mut last_step = f64::INFINITY;
+    // the residual of the last tangent's state, where its friction rows were assembled
+    let mut tangent_resid: Vec<f64> = vec![];
     for it in 0..=opts.newton.max_iterations {
         interrupted(it, last_res)?;
         // convergence check on the forces alone (cached after the line search), the
@@ -205,6 +207,7 @@ pub(crate) fn newton(
         let f = asm
             .assemble(model, st, true)
             .expect("state assembled above is not inverted");
+        tangent_resid.clone_from(&f.resid);
         let mut rhs = vec![f.resid.iter().map(|r| -r).collect::<Vec<f64>>()];
         let held = solve_newton_step(model, asm, opts, &mut rhs, it, |x| (x[0].clone(), 0.0))?;
         let dq = rhs.pop().expect("one right-hand side");
@@ -245,13 +248,13 @@ pub(crate) fn newton(
             Some(t) => *st = t,
             None => {
                 let reason = "line search found no acceptable step";
-                return Err(diverged(model, asm, (it, res), reason));
+                return Err(diverged(model, asm, (it, res), reason, Some(&f.resid)));
             }
         }
     }
     let reason = "maximum Newton iterations reached";
     let last = (opts.newton.max_iterations, last_res);
-    Err(diverged(model, asm, last, reason))
+    Err(diverged(model, asm, last, reason, Some(&tangent_resid)))
 }
 
 /// What a frictionless solve's divergence adds to its reason when the last tangent was
@@ -264,22 +267,58 @@ const INDEFINITE_TANGENT: &str = "the tangent stiffness was indefinite at the la
      at large aspect ratios a finer mesh delays (docs/verification.md, \"Robustness grid\")";
 
 /// The failure of a Newton solve at `(iteration, residual)` for `reason`, with
-/// [`INDEFINITE_TANGENT`] where it applies.
+/// [`INDEFINITE_TANGENT`] where it applies, and where the last assembled residual `resid` is
+/// given and has its largest entry on a node at the friction law's crossover, that node
+/// ([`at_crossover`]).
 fn diverged(
     model: &Model,
     asm: &Assembly,
     (iteration, residual): (usize, f64),
     reason: &str,
+    resid: Option<&[f64]>,
 ) -> StepFail {
     let indefinite = model.is_potential() && asm.sys.held_factorisation_indefinite();
+    let mut reason = match indefinite {
+        true => format!("{reason}; {INDEFINITE_TANGENT}"),
+        false => reason.into(),
+    };
+    if let Some(note) = resid.and_then(|r| at_crossover(asm, r)) {
+        reason = format!("{reason}; {note}");
+    }
     StepFail::Diverged {
         iteration,
         residual,
-        reason: match indefinite {
-            true => format!("{reason}; {INDEFINITE_TANGENT}"),
-            false => reason.into(),
-        },
+        reason,
     }
+}
+
+/// How close the two bounds of the threshold, `μN` and `τ_max ℓ`, must be (relative to the
+/// larger) for a divergence's reason to place its largest residual at the Coulomb–Orowan
+/// crossover. A diagnostic's threshold, not a parameter of the law: the unloading stalls
+/// of docs/verification.md ("Robustness grid") sit far inside it (2.1·10⁻⁹ on the AR 0.3,
+/// μ 100 loops of 32 and 48 face elements).
+const CROSSOVER_RTOL: f64 = 1e-2;
+
+/// Where the largest entry of `resid` is the sliding unknown of an active face node whose
+/// threshold sits at the Coulomb–Orowan crossover (the friction rows of the last tangent,
+/// assembled at the state of `resid`): which node, and how close its two bounds are. At that
+/// kink of the law Newton's model of the row is wrong on either side, and at a large friction
+/// coefficient this is where unloading stops.
+fn at_crossover(asm: &Assembly, resid: &[f64]) -> Option<String> {
+    let (slot, _) = (resid.iter().enumerate()).max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))?;
+    let row = asm.friction_rows.iter().find(|r| r.row == slot)?;
+    let (coulomb, orowan) = (row.coulomb.w_limit, row.orowan.w_limit);
+    let larger = coulomb.max(orowan);
+    let apart = (coulomb - orowan).abs() / larger;
+    (larger > 0.0 && apart <= CROSSOVER_RTOL).then(|| {
+        format!(
+            "the largest residual is on the sliding unknown of contact-face node {}, whose \
+             friction threshold sits at the Coulomb–Orowan crossover (μN and τ_max ℓ {:.1e} \
+             apart), a kink of the law that Newton's steps alternate across; at a large friction \
+             coefficient unloading stops at such a node (docs/verification.md, \"Robustness grid\")",
+            row.face, apart
+        )
+    })
 }
 
 /// The bordered solve converges the target's gap to this fraction of the event
@@ -340,6 +379,8 @@ pub(crate) fn newton_bordered(
     };
     let mut last_res = f64::NAN;
     let mut last_step = f64::INFINITY;
+    // the residual of the last tangent's state, where its friction rows were assembled
+    let mut tangent_resid: Vec<f64> = vec![];
     let mut kscale = 0.0;
     for it in 0..=opts.newton.max_iterations {
         interrupted(it, last_res)?;
@@ -365,6 +406,7 @@ pub(crate) fn newton_bordered(
         let f = asm
             .assemble(model, st, true)
             .expect("state assembled above is not inverted");
+        tangent_resid.clone_from(&f.resid);
         if it == 0 {
             kscale = inf_norm(&f.dresid_dd);
         }
@@ -381,11 +423,11 @@ pub(crate) fn newton_bordered(
         last_step = inf_norm(&step.dq);
         let searched = edge_line_search(model, asm, opts, st, &step, merit, initial);
         let reason = "edge line search found no acceptable step";
-        *st = searched.ok_or_else(|| diverged(model, asm, (it, res), reason))?;
+        *st = searched.ok_or_else(|| diverged(model, asm, (it, res), reason, Some(&f.resid)))?;
     }
     let reason = "maximum Newton iterations reached (edge solve)";
     let last = (opts.newton.max_iterations, last_res);
-    Err(diverged(model, asm, last, reason))
+    Err(diverged(model, asm, last, reason, Some(&tangent_resid)))
 }
 
 /// The merit of the bordered line search: the residual's part (its largest entry without
