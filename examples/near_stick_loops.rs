@@ -89,11 +89,12 @@ fn near_stick_curve(
 }
 
 fn unloading_steps() {
+    let penalty = wavy::defaults::elastic_slip_over_element();
     println!("| τ_max/E* | unloading steps per loading step | ∮ p̄ dd / (E* λ²) | face's work / (E* λ²) | face / loop − 1 |");
     println!("|---|---|---|---|---|");
     for tau in [0.05, 0.2] {
         for substeps in [1, 2, 4, 8] {
-            let e = near_stick_loop((tau, 0.005), MeshLevel::Default, None, substeps);
+            let e = near_stick_loop((tau, penalty), MeshLevel::Default, None, substeps);
             println!(
                 "| {tau} | {substeps} | {:.5e} | {:.5e} | {:+.2} % |",
                 e.work,
@@ -145,13 +146,6 @@ fn d_p(points: &[CurvePoint]) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// `∫ p dd` over the points in their order, by the trapezoid rule.
-fn trapezoid(pts: &[(f64, f64)]) -> f64 {
-    (pts.windows(2))
-        .map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0))
-        .sum()
-}
-
 /// The slope `dp/dd` at `pts[0]` of the parabola through `pts[0..3]`.
 fn one_sided_slope(pts: [(f64, f64); 3]) -> f64 {
     let [(x0, y0), (x1, y1), (x2, y2)] = pts;
@@ -161,21 +155,18 @@ fn one_sided_slope(pts: [(f64, f64); 3]) -> f64 {
 }
 
 /// The unloading branch's integral over its coarse intervals (one per loading interval, the
-/// `FINE_SUBSTEPS` fine steps of each), by three rules: the trapezoid on every `FINE_SUBSTEPS / m`-th
-/// point for m = 1, 2, 4, 8; Simpson's rule on the coarse interval's midpoint (what two unloading
-/// steps per loading step give); and the Hermite (end-corrected trapezoid) rule on the coarse
-/// points, `h (p₀ + p₁)/2 + h²/12 (p₀' − p₁')`, with the one-sided slopes of each end read off the
-/// fine points inside the interval (what slopes from the solver's tangent would give).
+/// `FINE_SUBSTEPS` fine steps of each), by two rules: Simpson's rule on the coarse interval's
+/// midpoint (what two unloading steps per loading step give), and the Hermite (end-corrected
+/// trapezoid) rule on the coarse points, `h (p₀ + p₁)/2 + h²/12 (p₀' − p₁')`, with the one-sided
+/// slopes of each end read off the fine points inside the interval (what slopes from the
+/// solver's tangent would give).
 struct UnloadingRules {
-    trapezoid: [f64; 4],
     simpson: f64,
     hermite: f64,
 }
 
 fn unloading_rules(fine: &[(f64, f64)]) -> UnloadingRules {
     let n = FINE_SUBSTEPS;
-    let every = |m: usize| -> Vec<(f64, f64)> { fine.iter().copied().step_by(n / m).collect() };
-    let trapezoid = [1, 2, 4, 8].map(|m| trapezoid(&every(m)));
     let (mut simpson, mut hermite) = (0.0, 0.0);
     for w in fine.chunks(n).zip(fine.chunks(n).skip(1)) {
         let (c, next) = w;
@@ -186,11 +177,7 @@ fn unloading_rules(fine: &[(f64, f64)]) -> UnloadingRules {
         let slope1 = one_sided_slope([next[0], c[n - 1], c[n - 2]]);
         hermite += h * (p0.1 + p1.1) / 2.0 + h * h / 12.0 * (slope0 - slope1);
     }
-    UnloadingRules {
-        trapezoid,
-        simpson,
-        hermite,
-    }
+    UnloadingRules { simpson, hermite }
 }
 
 /// What the loop's work `∮ p̄ dd` would be under other quadratures of the unloading branch, on the
@@ -201,12 +188,13 @@ fn unloading_rules(fine: &[(f64, f64)]) -> UnloadingRules {
 /// solved with one and with two unloading steps per loading step.
 fn quadrature() {
     let taus = [0.05, 0.1, 0.2];
+    let penalty = wavy::defaults::elastic_slip_over_element();
     let runs: Vec<(f64, usize)> = (taus.iter())
         .flat_map(|&t| [1, 2, FINE_SUBSTEPS].map(|m| (t, m)))
         .collect();
     let curves: Vec<Curve> = runs
         .par_iter()
-        .map(|&(t, m)| near_stick_curve((t, 0.005), MeshLevel::Default, None, m))
+        .map(|&(t, m)| near_stick_curve((t, penalty), MeshLevel::Default, None, m))
         .collect();
     println!("| τ_max/E* | trapezoid, 1 / 2 / 4 / 8 steps | limit | Simpson, 2 steps | Hermite, 1 step | W / limit − 1: trapezoid 1 step, Simpson 2, Hermite 1 | unloading Newton iterations, 1 / 2 steps |");
     println!("|---|---|---|---|---|---|---|");
@@ -214,13 +202,21 @@ fn quadrature() {
         let iterations =
             |curve: &Curve| -> usize { curve.unloading.iter().map(|q| q.newton_iterations).sum() };
         let fine = &c[2];
+        // the trapezoid rule as the scene takes it, on every (8/m)-th unloading point
+        let w = [1, 2, 4, 8].map(|m| {
+            let every = FINE_SUBSTEPS / m;
+            let coarse: Vec<CurvePoint> = fine.unloading[every - 1..]
+                .iter()
+                .step_by(every)
+                .copied()
+                .collect();
+            cycle_work_over_estar_lambda2(&fine.points, &coarse)
+        });
+        let limit = richardson(w[2], w[3], 2.0, 2.0);
+        let load_work = cycle_work_over_estar_lambda2(&fine.points, &[]);
         let loading = d_p(&fine.points);
-        let load_work = trapezoid(&[&[(0.0, 0.0)][..], &loading].concat());
-        let unloading = d_p(&fine.unloading);
-        let branch = [&loading[loading.len() - 1..], &unloading].concat();
+        let branch = [&loading[loading.len() - 1..], &d_p(&fine.unloading)].concat();
         let rules = unloading_rules(&branch);
-        let w = rules.trapezoid.map(|u| load_work + u);
-        let limit = w[3] + (w[3] - w[2]) / 3.0;
         let simpson = load_work + rules.simpson;
         let hermite = load_work + rules.hermite;
         let rel = |x: f64| 100.0 * (x / limit - 1.0);

@@ -37,14 +37,23 @@ fn interfaces() -> Vec<Interface> {
     all
 }
 
-/// The cycle of one case, or the solver's message.
-fn cycle(p: &LayerProblem) -> Result<Curve, String> {
-    let opts = SolveOptions {
-        mesh: MeshLevel::along_face(MESH),
+/// The grid's options on `mesh` face elements: loaded to a/λ 0.45.
+fn options(mesh: usize) -> SolveOptions {
+    SolveOptions {
+        mesh: MeshLevel::along_face(mesh),
         until_a_over_lambda: 0.45,
         ..SolveOptions::default()
-    };
-    solve_cycle(p, &opts, &mut |_, _| ControlFlow::Continue(())).map_err(|f| f.to_string())
+    }
+}
+
+/// The cycle of one case on `mesh` face elements, or the solver's message.
+fn cycle_on(p: &LayerProblem, mesh: usize) -> Result<Curve, String> {
+    solve_cycle(p, &options(mesh), &mut |_, _| ControlFlow::Continue(())).map_err(|f| f.to_string())
+}
+
+/// The cycle of one case on [`MESH`] face elements, or the solver's message.
+fn cycle(p: &LayerProblem) -> Result<Curve, String> {
+    cycle_on(p, MESH)
 }
 
 /// Every case at `aspect_ratio` loads to a/λ 0.45 and unloads to zero load with no contact
@@ -123,15 +132,11 @@ fn a_coarse_layer_losing_stability_is_named_in_the_message() {
             "AR {aspect_ratio}: {message}"
         );
     }
-    let opts = SolveOptions {
-        mesh: MeshLevel::along_face(32),
-        until_a_over_lambda: 0.45,
-        ..SolveOptions::default()
-    };
-    let complete =
-        wavy::fe::solve_curve(&problem(0.3, Interface::Frictionless), &opts, &mut |_| {
-            ControlFlow::Continue(())
-        });
+    let complete = wavy::fe::solve_curve(
+        &problem(0.3, Interface::Frictionless),
+        &options(32),
+        &mut |_| ControlFlow::Continue(()),
+    );
     assert!(
         complete.is_ok(),
         "AR 0.3 on 32 elements: {:?}",
@@ -147,16 +152,10 @@ fn a_coarse_layer_losing_stability_is_named_in_the_message() {
 #[test]
 fn an_unloading_stall_at_the_friction_crossover_is_named_in_the_message() {
     let slip = wavy::defaults::elastic_slip_over_element();
-    let opts = SolveOptions {
-        mesh: MeshLevel::along_face(32),
-        until_a_over_lambda: 0.45,
-        ..SolveOptions::default()
-    };
     let stalled = problem(0.3, Interface::coulomb_orowan(100.0, 0.1, slip));
-    let message = solve_cycle(&stalled, &opts, &mut |_, _| ControlFlow::Continue(()))
+    let message = cycle_on(&stalled, 32)
         .map(|_| ())
-        .expect_err("unloading stalls at μ 100")
-        .to_string();
+        .expect_err("unloading stalls at μ 100");
     assert!(
         message.contains("unloading stopped")
             && message.contains("Coulomb–Orowan crossover")

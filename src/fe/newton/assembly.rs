@@ -55,6 +55,10 @@ pub struct Assembly {
     /// The friction rows of the last assembled tangent, one per active sliding node (open
     /// ones included; empty without friction).
     pub(in crate::fe) friction_rows: Vec<FrictionRow>,
+    /// With friction, the equation slot of the largest residual entry at the last assembled
+    /// tangent's state, where [`Self::friction_rows`] were assembled: where a failed solve
+    /// looks for the friction law's crossover (`newton::at_crossover`).
+    pub(in crate::fe) tangent_largest_residual: Option<usize>,
 }
 
 /// The equations that the friction rows and the columns they touch can occupy: the contact
@@ -109,6 +113,7 @@ impl Assembly {
             cache: None,
             tangent_assemblies: 0,
             friction_rows: Vec::new(),
+            tangent_largest_residual: None,
         }
     }
 
@@ -184,6 +189,11 @@ impl Assembly {
             };
             friction_complementarity =
                 add_friction(model, st, &map, &law, (&grad, &normal_rows), sinks);
+            if with_matrix {
+                self.tangent_largest_residual = (resid.iter().enumerate())
+                    .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+                    .map(|(slot, _)| slot);
+            }
         }
         let forces = Forces {
             energy,

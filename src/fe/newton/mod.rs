@@ -183,8 +183,6 @@ pub(crate) fn newton(
 ) -> Result<usize, StepFail> {
     let mut last_res = f64::NAN;
     let mut last_step = f64::INFINITY;
-    // the residual of the last tangent's state, where its friction rows were assembled
-    let mut tangent_resid: Vec<f64> = vec![];
     for it in 0..=opts.newton.max_iterations {
         interrupted(it, last_res)?;
         // convergence check on the forces alone (cached after the line search), the
@@ -207,7 +205,6 @@ pub(crate) fn newton(
         let f = asm
             .assemble(model, st, true)
             .expect("state assembled above is not inverted");
-        tangent_resid.clone_from(&f.resid);
         let mut rhs = vec![f.resid.iter().map(|r| -r).collect::<Vec<f64>>()];
         let held = solve_newton_step(model, asm, opts, &mut rhs, it, |x| (x[0].clone(), 0.0))?;
         let dq = rhs.pop().expect("one right-hand side");
@@ -248,13 +245,13 @@ pub(crate) fn newton(
             Some(t) => *st = t,
             None => {
                 let reason = "line search found no acceptable step";
-                return Err(diverged(model, asm, (it, res), reason, Some(&f.resid)));
+                return Err(diverged(model, asm, (it, res), reason));
             }
         }
     }
     let reason = "maximum Newton iterations reached";
     let last = (opts.newton.max_iterations, last_res);
-    Err(diverged(model, asm, last, reason, Some(&tangent_resid)))
+    Err(diverged(model, asm, last, reason))
 }
 
 /// What a frictionless solve's divergence adds to its reason when the last tangent was
@@ -267,22 +264,20 @@ const INDEFINITE_TANGENT: &str = "the tangent stiffness was indefinite at the la
      at large aspect ratios a finer mesh delays (docs/verification.md, \"Robustness grid\")";
 
 /// The failure of a Newton solve at `(iteration, residual)` for `reason`, with
-/// [`INDEFINITE_TANGENT`] where it applies, and where the last assembled residual `resid` is
-/// given and has its largest entry on a node at the friction law's crossover, that node
-/// ([`at_crossover`]).
+/// [`INDEFINITE_TANGENT`] where it applies, and the node at the friction law's crossover
+/// where the last tangent's largest residual sits on one ([`at_crossover`]).
 fn diverged(
     model: &Model,
     asm: &Assembly,
     (iteration, residual): (usize, f64),
     reason: &str,
-    resid: Option<&[f64]>,
 ) -> StepFail {
     let indefinite = model.is_potential() && asm.sys.held_factorisation_indefinite();
     let mut reason = match indefinite {
         true => format!("{reason}; {INDEFINITE_TANGENT}"),
         false => reason.into(),
     };
-    if let Some(note) = resid.and_then(|r| at_crossover(asm, r)) {
+    if let Some(note) = at_crossover(asm) {
         reason = format!("{reason}; {note}");
     }
     StepFail::Diverged {
@@ -299,13 +294,12 @@ fn diverged(
 /// μ 100 loops of 32 and 48 face elements).
 const CROSSOVER_RTOL: f64 = 1e-2;
 
-/// Where the largest entry of `resid` is the sliding unknown of an active face node whose
-/// threshold sits at the Coulomb–Orowan crossover (the friction rows of the last tangent,
-/// assembled at the state of `resid`): which node, and how close its two bounds are. At that
-/// kink of the law Newton's model of the row is wrong on either side, and at a large friction
-/// coefficient this is where unloading stops.
-fn at_crossover(asm: &Assembly, resid: &[f64]) -> Option<String> {
-    let (slot, _) = (resid.iter().enumerate()).max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))?;
+/// Where the largest residual entry of the last tangent's state is the sliding unknown of an
+/// active face node whose threshold sits at the Coulomb–Orowan crossover: which node, and how
+/// close its two bounds are. At that kink of the law Newton's model of the row is wrong on
+/// either side, and at a large friction coefficient this is where unloading stops.
+fn at_crossover(asm: &Assembly) -> Option<String> {
+    let slot = asm.tangent_largest_residual?;
     let row = asm.friction_rows.iter().find(|r| r.row == slot)?;
     let (coulomb, orowan) = (row.coulomb.w_limit, row.orowan.w_limit);
     let larger = coulomb.max(orowan);
@@ -379,8 +373,6 @@ pub(crate) fn newton_bordered(
     };
     let mut last_res = f64::NAN;
     let mut last_step = f64::INFINITY;
-    // the residual of the last tangent's state, where its friction rows were assembled
-    let mut tangent_resid: Vec<f64> = vec![];
     let mut kscale = 0.0;
     for it in 0..=opts.newton.max_iterations {
         interrupted(it, last_res)?;
@@ -406,7 +398,6 @@ pub(crate) fn newton_bordered(
         let f = asm
             .assemble(model, st, true)
             .expect("state assembled above is not inverted");
-        tangent_resid.clone_from(&f.resid);
         if it == 0 {
             kscale = inf_norm(&f.dresid_dd);
         }
@@ -423,11 +414,11 @@ pub(crate) fn newton_bordered(
         last_step = inf_norm(&step.dq);
         let searched = edge_line_search(model, asm, opts, st, &step, merit, initial);
         let reason = "edge line search found no acceptable step";
-        *st = searched.ok_or_else(|| diverged(model, asm, (it, res), reason, Some(&f.resid)))?;
+        *st = searched.ok_or_else(|| diverged(model, asm, (it, res), reason))?;
     }
     let reason = "maximum Newton iterations reached (edge solve)";
     let last = (opts.newton.max_iterations, last_res);
-    Err(diverged(model, asm, last, reason, Some(&tangent_resid)))
+    Err(diverged(model, asm, last, reason))
 }
 
 /// The merit of the bordered line search: the residual's part (its largest entry without

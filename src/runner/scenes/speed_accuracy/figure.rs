@@ -5,6 +5,7 @@ use crate::accuracy::{self, Tier};
 use crate::fe::Kinematics;
 use crate::plot::{palette, LegendPosition, Panel, Series};
 use crate::runner::scenes::speed_accuracy::tier_measurement::{CaseMeasurements, Measurement};
+use plotters::style::RGBColor;
 
 /// One panel per case: error against cost, each tier a marker, the finite-strain meshes joined,
 /// the Pareto front dashed. Also returns, per case with tiers that have no curve, which.
@@ -71,7 +72,7 @@ impl Families {
     }
 
     /// The legend name and colour of a tier's family.
-    fn of_tier(&self, t: &Tier) -> (&str, plotters::style::RGBColor) {
+    fn of_tier(&self, t: &Tier) -> (&str, RGBColor) {
         match t {
             Tier::Westergaard => ("Westergaard", palette::BLACK),
             Tier::Wnl(crate::models::CoefficientSet::PaperTable1) => {
