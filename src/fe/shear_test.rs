@@ -20,7 +20,7 @@ use crate::fe::contact::friction::{CoulombOrowan, Interface};
 use crate::fe::contact::indenter::Indenter;
 use crate::fe::model::material::{estar_over_g, NeoHooke};
 use crate::fe::model::mesh::{Grading, Mesh};
-use crate::fe::model::{Lateral, Model};
+use crate::fe::model::{Lateral, Model, State};
 use crate::fe::newton::active_set::{equilibrate, Hold};
 use crate::fe::newton::assembly::Assembly;
 
@@ -66,36 +66,15 @@ pub struct ShearPoint {
     pub min_face_displacement_over_elastic_slip: f64,
 }
 
+/// Width of the block, units of λ.
+const WIDTH: f64 = 0.5;
+
 /// Press the block, then shear it; one point per shearing step.
 pub fn press_and_shear(test: &ShearTest) -> Result<Vec<ShearPoint>, SolveError> {
-    let width = 0.5;
-    let h = test.height_over_width * width;
-    let (nx, ny) = test.elements;
-    let mesh = Mesh::graded(
-        nx,
-        ny,
-        h,
-        Grading {
-            peak_ratio: 1.0,
-            first_layer_over_dx: h / ny as f64 * nx as f64 / width,
-        },
-    );
-    let mat = NeoHooke {
-        g: 1.0,
-        kappa: test.kappa_over_g,
-    };
-    let estar = estar_over_g(test.kappa_over_g);
-    let model = Model::new(
-        mesh,
-        mat,
-        Kinematics::Finite,
-        Indenter::sinusoid(0.0),
-        Interface::CoulombOrowan(test.friction),
-        Lateral::Free,
-    );
+    let model = block_model(test);
+    let h = model.mesh.thickness;
     let mut asm = Assembly::new(&model);
     let opts = SolveOptions::default();
-    let e_c = model.elastic_slip_limit().expect("friction is built");
     let mut st = model.initial_state();
     for k in 0..st.active.len() {
         model.activate(&mut st, k);
@@ -103,67 +82,118 @@ pub fn press_and_shear(test: &ShearTest) -> Result<Vec<ShearPoint>, SolveError> 
     let (n_press, n_shear) = test.steps;
     let mut points = Vec::with_capacity(n_shear);
     for step in 1..=n_press + n_shear {
-        let prev = st.clone();
         if step <= n_press {
-            st.d = test.press_over_height * h * step as f64 / n_press as f64;
-            // predictor: uniform compression
-            for (x, xr) in st.x.iter_mut().zip(&model.mesh.nodes) {
-                x[1] = xr[1] * (h - st.d) / h;
-            }
+            press_predictor(
+                &model,
+                &mut st,
+                test.press_over_height * h * step as f64 / n_press as f64,
+            );
         } else {
-            let j = step - n_press;
-            let dx = test.shift_over_height * h * j as f64 / n_shear as f64;
-            // predictor: simple shear of the increment
-            for (x, xr) in st.x.iter_mut().zip(&model.mesh.nodes) {
-                x[0] += (dx - prev.dx) * xr[1] / h;
-            }
-            st.dx = dx;
+            let shift = test.shift_over_height * h * (step - n_press) as f64 / n_shear as f64;
+            shear_predictor(&model, &mut st, shift);
         }
         model.enforce_constraints(&mut st);
         equilibrate(&model, &mut asm, &mut st, &opts, Hold::NONE)
             .map_err(|f| f.into_error(step, st.d))?;
         asm.commit_slip(&model, &mut st);
-        if step <= n_press {
-            continue;
+        if step > n_press {
+            points.push(shear_point(&model, &mut asm, &st, step)?);
         }
-        let f = asm
-            .assemble(&model, &st, false)
-            .ok_or(SolveError::Inverted {
-                step,
-                iteration: 0,
-                residual: f64::NAN,
-            })?;
-        let b = &model.mesh.bottom;
-        let normal: f64 = model.normal_forces(&st, &f.grad).iter().sum();
-        let threshold: f64 = model.friction_thresholds(&st, &f.grad).iter().sum();
-        let length: f64 = b
-            .windows(2)
-            .map(|w| {
-                let (p, q) = (st.x[w[0]], st.x[w[1]]);
-                (q[0] - p[0]).hypot(q[1] - p[1])
-            })
-            .sum();
-        let min_disp = b
-            .iter()
-            .map(|&n| st.x[n][0] - model.mesh.nodes[n][0])
-            .fold(f64::INFINITY, f64::min);
-        points.push(ShearPoint {
-            shift_over_height: st.dx / h,
-            mean_shear_over_estar: model.slab_shear(&f.grad) / width / estar,
-            mean_pressure_over_estar: normal / width / estar,
-            threshold_over_estar: threshold / width / estar,
-            contact_length_over_width: length / width,
-            slipping_nodes: st
-                .slip
-                .iter()
-                .filter(|s| match e_c > 0.0 {
-                    true => s.elastic.abs() >= e_c * (1.0 - 1e-12),
-                    false => s.held != crate::fe::contact::friction::Branch::Stick,
-                })
-                .count(),
-            nodes: b.len(),
-            min_face_displacement_over_elastic_slip: min_disp / e_c,
-        });
     }
     Ok(points)
+}
+
+/// The block of `test` on the flat surface: its mesh (uniform, the width [`WIDTH`]), material
+/// and friction law, the lateral faces free.
+fn block_model(test: &ShearTest) -> Model {
+    let h = test.height_over_width * WIDTH;
+    let (nx, ny) = test.elements;
+    let mesh = Mesh::graded(
+        nx,
+        ny,
+        h,
+        Grading {
+            peak_ratio: 1.0,
+            first_layer_over_dx: h / ny as f64 * nx as f64 / WIDTH,
+        },
+    );
+    let mat = NeoHooke {
+        g: 1.0,
+        kappa: test.kappa_over_g,
+    };
+    Model::new(
+        mesh,
+        mat,
+        Kinematics::Finite,
+        Indenter::sinusoid(0.0),
+        Interface::CoulombOrowan(test.friction),
+        Lateral::Free,
+    )
+}
+
+/// A pressing step to slab displacement `d`: uniform compression as the predictor.
+fn press_predictor(model: &Model, st: &mut State, d: f64) {
+    let h = model.mesh.thickness;
+    st.d = d;
+    for (x, xr) in st.x.iter_mut().zip(&model.mesh.nodes) {
+        x[1] = xr[1] * (h - d) / h;
+    }
+}
+
+/// A shearing step to slab shift `shift`: simple shear of the increment as the predictor.
+fn shear_predictor(model: &Model, st: &mut State, shift: f64) {
+    let h = model.mesh.thickness;
+    for (x, xr) in st.x.iter_mut().zip(&model.mesh.nodes) {
+        x[0] += (shift - st.dx) * xr[1] / h;
+    }
+    st.dx = shift;
+}
+
+/// What the converged state `st` of shearing step `step` reads: forces, thresholds, contact
+/// length and slip.
+fn shear_point(
+    model: &Model,
+    asm: &mut Assembly,
+    st: &State,
+    step: usize,
+) -> Result<ShearPoint, SolveError> {
+    let h = model.mesh.thickness;
+    let estar = estar_over_g(model.mat.kappa / model.mat.g);
+    let e_c = model.elastic_slip_limit().expect("friction is built");
+    let f = asm.assemble(model, st, false).ok_or(SolveError::Inverted {
+        step,
+        iteration: 0,
+        residual: f64::NAN,
+    })?;
+    let b = &model.mesh.bottom;
+    let normal: f64 = model.normal_forces(st, &f.grad).iter().sum();
+    let threshold: f64 = model.friction_thresholds(st, &f.grad).iter().sum();
+    let length: f64 = b
+        .windows(2)
+        .map(|w| {
+            let (p, q) = (st.x[w[0]], st.x[w[1]]);
+            (q[0] - p[0]).hypot(q[1] - p[1])
+        })
+        .sum();
+    let min_disp = b
+        .iter()
+        .map(|&n| st.x[n][0] - model.mesh.nodes[n][0])
+        .fold(f64::INFINITY, f64::min);
+    Ok(ShearPoint {
+        shift_over_height: st.dx / h,
+        mean_shear_over_estar: model.slab_shear(&f.grad) / WIDTH / estar,
+        mean_pressure_over_estar: normal / WIDTH / estar,
+        threshold_over_estar: threshold / WIDTH / estar,
+        contact_length_over_width: length / WIDTH,
+        slipping_nodes: st
+            .slip
+            .iter()
+            .filter(|s| match e_c > 0.0 {
+                true => s.elastic.abs() >= e_c * (1.0 - 1e-12),
+                false => s.held != crate::fe::contact::friction::Branch::Stick,
+            })
+            .count(),
+        nodes: b.len(),
+        min_face_displacement_over_elastic_slip: min_disp / e_c,
+    })
 }

@@ -75,63 +75,36 @@ pub(crate) fn solve_newton_step(
     };
     let rows = &asm.friction_rows;
     let with_load_column = rhs.len() > 1;
-    let mut assumed: Vec<LawPiece> = rows.iter().map(|r| r.at).collect();
-    let mut choices: Vec<BranchChoice> = rows
-        .iter()
-        .map(|r| BranchChoice::assembled(r.at.slip))
-        .collect();
-    let c_t = opts.newton.stick_decision_stiffness * law.hold_stiffness;
+    let mut choice = PieceChoice {
+        assumed: rows.iter().map(|r| r.at).collect(),
+        branches: rows
+            .iter()
+            .map(|r| BranchChoice::assembled(r.at.slip))
+            .collect(),
+        slip_c: law.slip_c,
+        c_t: opts.newton.stick_decision_stiffness * law.hold_stiffness,
+    };
     let switching = asm
         .sys
         .solve_switching_rows(rhs, MAX_BRANCH_SWITCHES, |solutions| {
-            let (step, dd) = direction(solutions);
-            let mut landed = assumed.clone();
-            for (i, r) in rows.iter().enumerate() {
-                let regime = r.regime_after(&step);
-                landed[i] = match &r.held {
-                    Some(held) => LawPiece {
-                        regime,
-                        slip: decide_exact(r, held, (assumed[i], regime), (&step, dd), c_t),
-                    },
-                    None => {
-                        let slip = Branch::of(r.trial_slip + r.w * step[r.row], law.slip_c);
-                        choices[i] = choices[i].after_step(r.at.slip, slip);
-                        LawPiece {
-                            regime,
-                            slip: choices[i].assumed,
-                        }
-                    }
-                };
-            }
-            if landed == assumed {
+            let landed = choice.landed(rows, direction(solutions));
+            if landed == choice.assumed {
                 return None;
             }
-            assumed = landed;
-            let changes = rows
-                .iter()
-                .zip(&assumed)
-                .filter(|(r, &b)| r.at != b)
-                .map(|(r, &b)| {
-                    let (entries, d_resid, d_resid_dd) = r.switched(b, law.slip_c);
-                    let mut rhs = vec![-d_resid];
-                    if with_load_column {
-                        rhs.push(-d_resid_dd);
-                    }
-                    RowChange {
-                        row: r.row,
-                        entries,
-                        rhs,
-                    }
-                })
-                .collect();
-            Some(changes)
+            choice.assumed = landed;
+            Some(row_changes(
+                rows,
+                &choice.assumed,
+                law.slip_c,
+                with_load_column,
+            ))
         });
     let switched = switching.map_err(failed)?;
     if !law.exact_stick() {
         return Ok(None);
     }
     let solved: Vec<LawPiece> = match switched {
-        Some(_) => assumed,
+        Some(_) => choice.assumed,
         None => rows.iter().map(|r| r.at).collect(),
     };
     Ok(Some(
@@ -140,6 +113,69 @@ pub(crate) fn solve_newton_step(
             .map(|(r, piece)| (r.face, piece.slip))
             .collect(),
     ))
+}
+
+/// The semismooth choice of the friction nodes' pieces of the law within one Newton step.
+struct PieceChoice {
+    /// Each friction row's piece that the last solve assumed.
+    assumed: Vec<LawPiece>,
+    /// Each row's return-mapping choice under the penalty law.
+    branches: Vec<BranchChoice>,
+    /// The penalty law's elastic slip `e_c` (units of λ).
+    slip_c: f64,
+    /// Stiffness of the exact-stick decision (`stick_decision_stiffness · k`).
+    c_t: f64,
+}
+
+impl PieceChoice {
+    /// The piece each row lands on after the step `(δq, δd)` solved on the assumed pieces:
+    /// its threshold's regime after the step, and its slip branch by the exact-stick decision
+    /// ([`decide_exact`]) or the penalty law's choice ([`BranchChoice::after_step`]).
+    fn landed(&mut self, rows: &[FrictionRow], (step, dd): (Vec<f64>, f64)) -> Vec<LawPiece> {
+        let mut landed = self.assumed.clone();
+        for (i, r) in rows.iter().enumerate() {
+            let regime = r.regime_after(&step);
+            let slip = match &r.held {
+                Some(held) => {
+                    decide_exact(r, held, (self.assumed[i], regime), (&step, dd), self.c_t)
+                }
+                None => {
+                    let slip = Branch::of(r.trial_slip + r.w * step[r.row], self.slip_c);
+                    self.branches[i] = self.branches[i].after_step(r.at.slip, slip);
+                    self.branches[i].assumed
+                }
+            };
+            landed[i] = LawPiece { regime, slip };
+        }
+        landed
+    }
+}
+
+/// The row changes that put each friction row whose piece in `pieces` differs from its
+/// assembled one on that piece ([`FrictionRow::switched`]; with the load column's right-hand
+/// side where the solve has one).
+fn row_changes(
+    rows: &[FrictionRow],
+    pieces: &[LawPiece],
+    slip_c: f64,
+    with_load_column: bool,
+) -> Vec<RowChange> {
+    rows.iter()
+        .zip(pieces)
+        .filter(|(r, &b)| r.at != b)
+        .map(|(r, &b)| {
+            let (entries, d_resid, d_resid_dd) = r.switched(b, slip_c);
+            let mut rhs = vec![-d_resid];
+            if with_load_column {
+                rhs.push(-d_resid_dd);
+            }
+            RowChange {
+                row: r.row,
+                entries,
+                rhs,
+            }
+        })
+        .collect()
 }
 
 /// The exact-stick piece of node `r` after the step `(δq, δd)` solved with the node on
