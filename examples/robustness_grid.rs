@@ -8,7 +8,7 @@
 //!
 //! Run: `make robustness` (after a release build; `--wavy` names the binary,
 //! `--mesh 48,96,160` the meshes, `--timeout-s 1200` the limit per case: a frictional loop on
-//! mesh 160 takes 6–8½ minutes on one core, docs/verification.md).
+//! mesh 160 takes minutes on one core, docs/verification.md).
 use rayon::prelude::*;
 use std::io::Read;
 use std::process::{Command, Stdio};
