@@ -143,6 +143,7 @@ fn calibrate_aspect() {
                 grading: Grading {
                     peak_ratio,
                     first_layer_over_dx,
+                    ..Grading::default()
                 },
                 until_a_over_lambda: 0.47,
                 contact: ContactOptions {
@@ -249,6 +250,7 @@ fn calibrate_progress() {
             grading: Grading {
                 peak_ratio,
                 first_layer_over_dx,
+                ..Grading::default()
             },
             until_a_over_lambda: 0.32,
             ..SolveOptions::default()

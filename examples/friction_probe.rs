@@ -4,8 +4,9 @@
 //! /tmp/friction_probe), and the knobs the study varies: EC (`elastic_slip_over_element`, 0.005),
 //! RTOL and LOOSE (the Newton tolerances, 1e-10 and 1e-5), SEMI (1: the semismooth branch choice,
 //! 0: the plain Newton step), EDGE_LS (halvings of the bordered solve's line search, 8), PEAK (the
-//! face grading's peak ratio, 4), KIN (finite or linear), DA (`StepOptions::da_target`, 0: the
-//! next event is the first free node beyond the edge; above 0 it skips the nodes closer than that).
+//! face grading's peak ratio, 4), COARSEN (its `coarsen_at_aspect`, 0), KIN (finite or linear),
+//! DA (`StepOptions::da_target`, 0: the next event is the first free node beyond the edge; above 0
+//! it skips the nodes closer than that).
 //!
 //! Per mesh it prints the wall time and the Newton iterations, and writes `OUT/mN.csv`, one row per
 //! converged point: a/λ, p̄/E*, d/λ, Newton iterations and the face's friction state node by node
@@ -85,6 +86,7 @@ fn main() {
         ..SolveOptions::default()
     };
     opts.grading.peak_ratio = number("PEAK", "4");
+    opts.grading.coarsen_at_aspect = number("COARSEN", "0");
     opts.steps.da_target = number("DA", "0");
     for m in env("MESHES", "48").split(',') {
         let nx: usize = m.trim().parse().expect("MESHES: face element counts");

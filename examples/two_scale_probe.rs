@@ -6,8 +6,8 @@
 //! UNTIL (contact fraction, 0.9), BEM_N (points per wavelength, 16384), DEPTH (elements across
 //! the thickness per element along the face, 0.25 as the two-scale scenes), REF (a curve CSV
 //! written by OUT, the finite-strain reference instead of the finest mesh), OUT (folder for
-//! `mN.csv`, optional). Prints the relative RMS / mean / max error over points with contact
-//! fraction ≥ 0.05. Diagnostics: BEM_AT (comma-separated p̄/E*: only the BEM's fraction and
+//! `mN.csv`, optional), COARSEN (the grading's `coarsen_at_aspect`, 0). Prints the relative
+//! RMS / mean / max error over points with contact fraction ≥ 0.05. Diagnostics: BEM_AT (comma-separated p̄/E*: only the BEM's fraction and
 //! patches there), DIAG (`lo,hi`: each FE point's patches in that p̄/E* range beside the BEM's),
 //! CHANGES (linear: where the FE's patch count changes, whether the BEM's changes over the same
 //! load step, and both contact fractions' change over it), SUPERPOSITION (no FE: the
@@ -157,7 +157,10 @@ fn main() {
                 nx: mesh,
                 ny: ((mesh as f64 * depth).round() as usize).max(2),
             },
-            grading: Grading::uniform_face(),
+            grading: Grading {
+                coarsen_at_aspect: env("COARSEN", "0").parse().expect("COARSEN"),
+                ..Grading::uniform_face()
+            },
             until_contact_fraction: Some(until),
             ..Default::default()
         };

@@ -118,6 +118,14 @@ pub const PEAK_RATIO: InputRange = InputRange {
 /// The mesh grading's first layer height over the face spacing.
 pub const FIRST_LAYER_OVER_DX: InputRange = InputRange::positive("grading.first_layer_over_dx");
 
+/// The row height over column width at which the mesh's columns are coarsened: below 1 a
+/// transition would make elements flatter than they are tall by more than threefold.
+pub const COARSEN_AT_ASPECT: InputRange = InputRange {
+    field: "grading.coarsen_at_aspect",
+    allowed: "0 (no coarsening) or >= 1",
+    test: |v| v == 0.0 || v >= 1.0,
+};
+
 #[cfg(test)]
 mod tests {
     use super::*;

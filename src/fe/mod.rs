@@ -203,6 +203,7 @@ pub fn validate(problem: &LayerProblem, opts: &SolveOptions) -> Result<(), Solve
     check_range("mesh.ny", ny as f64, ny >= 1, ">= 1")?;
     input_ranges::PEAK_RATIO.check(opts.grading.peak_ratio)?;
     input_ranges::FIRST_LAYER_OVER_DX.check(opts.grading.first_layer_over_dx)?;
+    input_ranges::COARSEN_AT_ASPECT.check(opts.grading.coarsen_at_aspect)?;
     validate_profile(&problem.profile(), problem.kinematics, nx, opts.grading)
 }
 

@@ -115,6 +115,7 @@ fn block_model(test: &ShearTest) -> Model {
         Grading {
             peak_ratio: 1.0,
             first_layer_over_dx: h / ny as f64 * nx as f64 / WIDTH,
+            coarsen_at_aspect: 0.0,
         },
     );
     let mat = NeoHooke {

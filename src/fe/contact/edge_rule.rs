@@ -95,8 +95,8 @@ impl EdgeRule {
 /// over `|x_j − x_i|`; 0 for a degenerate width.
 pub(crate) fn element_aspect(model: &Model, st: &State, i: usize, j: usize) -> f64 {
     let mesh = &model.mesh;
-    let height = |c: usize| st.x[mesh.id(c, 1)][1] - st.x[mesh.id(c, 0)][1];
-    let width = (st.x[mesh.id(j, 0)][0] - st.x[mesh.id(i, 0)][0]).abs();
+    let height = |c: usize| st.x[mesh.above_bottom[c]][1] - st.x[mesh.bottom[c]][1];
+    let width = (st.x[mesh.bottom[j]][0] - st.x[mesh.bottom[i]][0]).abs();
     if width > 0.0 {
         0.5 * (height(i) + height(j)) / width
     } else {

@@ -131,6 +131,9 @@ pub struct Grading {
     pub peak_ratio: f64,
     /// Bottom layer thickness in units of the mean face spacing `½/nx`.
     pub first_layer_over_dx: f64,
+    /// Coarsen the columns threefold in a row whose height reaches this many times the mean
+    /// column width (a conforming transition row); 0 keeps every column to the bonded face.
+    pub coarsen_at_aspect: f64,
 }
 
 impl Grading {
@@ -149,16 +152,18 @@ impl Default for Grading {
         Self {
             peak_ratio: 4.0,
             first_layer_over_dx: 1.0,
+            coarsen_at_aspect: 0.0,
         }
     }
 }
 
-/// Structured mesh.
+/// Quad mesh of the layer: structured rows of columns, the columns coarsened threefold where
+/// the rows have grown taller than [`Grading::coarsen_at_aspect`] times their width.
 #[derive(Clone, Debug)]
 pub struct Mesh {
-    /// Elements along `X`.
+    /// Elements along `X` on the contact face.
     pub nx: usize,
-    /// Elements along `Y`.
+    /// Rows of elements along `Y`.
     pub ny: usize,
     /// Layer thickness `h/λ`.
     pub thickness: f64,
@@ -168,12 +173,18 @@ pub struct Mesh {
     pub quads: Vec<[usize; 4]>,
     /// Contact-face nodes in order of increasing `X`.
     pub bottom: Vec<usize>,
+    /// The node above each contact-face node, at the top of the first row of elements (same
+    /// order as `bottom`).
+    pub above_bottom: Vec<usize>,
     /// Bonded-face nodes in order of increasing `X`.
     pub top: Vec<usize>,
+    /// Nodes on the lateral faces `X = 0` and `X = ½`, each from the contact face up.
+    pub sides: [Vec<usize>; 2],
 }
 
 impl Mesh {
-    /// Build the graded mesh.
+    /// Build the graded mesh: the face spacing graded toward the peak, the rows toward the
+    /// contact face, and the columns coarsened with depth if `grading.coarsen_at_aspect > 0`.
     pub fn graded(nx: usize, ny: usize, thickness: f64, grading: Grading) -> Self {
         let beta = ((grading.peak_ratio - 1.0) / 2.0).max(0.0);
         let xs: Vec<f64> = (0..=nx)
@@ -183,35 +194,101 @@ impl Mesh {
             })
             .collect();
         let ys = geometric_layers(ny, thickness, grading.first_layer_over_dx * 0.5 / nx as f64);
-        let mut nodes = Vec::with_capacity((nx + 1) * (ny + 1));
-        for &y in &ys {
-            for &x in &xs {
-                nodes.push([x, y]);
-            }
-        }
-        let id = |i: usize, j: usize| j * (nx + 1) + i;
-        let mut quads = Vec::with_capacity(nx * ny);
-        for j in 0..ny {
-            for i in 0..nx {
-                quads.push([id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
-            }
-        }
-        Self {
+        let mut mesh = Self {
             nx,
             ny,
             thickness,
-            nodes,
-            quads,
-            bottom: (0..=nx).map(|i| id(i, 0)).collect(),
-            top: (0..=nx).map(|i| id(i, ny)).collect(),
+            nodes: Vec::new(),
+            quads: Vec::new(),
+            bottom: Vec::new(),
+            above_bottom: Vec::new(),
+            top: Vec::new(),
+            sides: [Vec::new(), Vec::new()],
+        };
+        let mut line: Vec<usize> = xs.iter().map(|&x| mesh.add_node([x, 0.0])).collect();
+        mesh.bottom = line.clone();
+        mesh.add_side_nodes(&line);
+        for (j, rows) in ys.windows(2).enumerate() {
+            let (y0, y1) = (rows[0], rows[1]);
+            let columns = line.len() - 1;
+            let width = 0.5 / columns as f64;
+            let coarsen = j >= 1
+                && columns >= TRANSITION_COLUMNS
+                && grading.coarsen_at_aspect > 0.0
+                && y1 - y0 >= grading.coarsen_at_aspect * width;
+            line = match coarsen {
+                true => mesh.transition_row(&line, y0, y1),
+                false => mesh.plain_row(&line, y1),
+            };
+            mesh.add_side_nodes(&line);
+            if j == 0 {
+                mesh.above_bottom = line.clone();
+            }
         }
+        mesh.top = line;
+        mesh
     }
 
-    /// Node id of column `i`, row `j`.
-    pub fn id(&self, i: usize, j: usize) -> usize {
-        j * (self.nx + 1) + i
+    fn add_side_nodes(&mut self, line: &[usize]) {
+        self.sides[0].push(line[0]);
+        self.sides[1].push(*line.last().expect("a line has nodes"));
+    }
+
+    fn add_node(&mut self, x: [f64; 2]) -> usize {
+        self.nodes.push(x);
+        self.nodes.len() - 1
+    }
+
+    /// A row of quads from the nodes `line` up to a line of nodes at the same `X` at height
+    /// `y1`; returns that line.
+    fn plain_row(&mut self, line: &[usize], y1: f64) -> Vec<usize> {
+        let upper: Vec<usize> = line
+            .iter()
+            .map(|&n| self.add_node([self.nodes[n][0], y1]))
+            .collect();
+        for i in 0..line.len() - 1 {
+            self.quads
+                .push([line[i], line[i + 1], upper[i + 1], upper[i]]);
+        }
+        upper
+    }
+
+    /// A row that joins every [`TRANSITION_COLUMNS`] columns of `line` into one: per group, the
+    /// conforming template of four quads (two nodes at mid-height above the group's inner
+    /// nodes; below, two quads beside one between them; above, one across the group). The
+    /// columns left over at `X = ½` (fewer than a group) continue as plain quads. Returns the
+    /// upper line of nodes at height `y1`.
+    fn transition_row(&mut self, line: &[usize], y0: f64, y1: f64) -> Vec<usize> {
+        let columns = line.len() - 1;
+        let groups = columns / TRANSITION_COLUMNS;
+        let x = |m: &Self, n: usize| m.nodes[n][0];
+        let mut upper = Vec::with_capacity(groups + 1 + columns % TRANSITION_COLUMNS);
+        for g in 0..=groups {
+            upper.push(self.add_node([x(self, line[TRANSITION_COLUMNS * g]), y1]));
+        }
+        let y_mid = 0.5 * (y0 + y1);
+        for g in 0..groups {
+            let t = &line[TRANSITION_COLUMNS * g..=TRANSITION_COLUMNS * (g + 1)];
+            let m1 = self.add_node([x(self, t[1]), y_mid]);
+            let m2 = self.add_node([x(self, t[2]), y_mid]);
+            let (b0, b3) = (upper[g], upper[g + 1]);
+            self.quads.push([t[0], t[1], m1, b0]);
+            self.quads.push([t[1], t[2], m2, m1]);
+            self.quads.push([t[2], t[3], b3, m2]);
+            self.quads.push([m1, m2, b3, b0]);
+        }
+        for i in TRANSITION_COLUMNS * groups..columns {
+            let right = self.add_node([x(self, line[i + 1]), y1]);
+            let left = *upper.last().expect("the group's last node");
+            self.quads.push([line[i], line[i + 1], right, left]);
+            upper.push(right);
+        }
+        upper
     }
 }
+
+/// Columns a transition row joins into one.
+const TRANSITION_COLUMNS: usize = 3;
 
 /// Layer interfaces `0 = y₀ < … < y_n = h` with geometric growth and first layer `t0`
 /// (uniform if `n t0 ≥ h`).
@@ -248,4 +325,94 @@ fn geometric_layers(n: usize, h: f64, t0: f64) -> Vec<f64> {
         *v *= scale;
     }
     ys
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashMap;
+
+    fn shoelace(m: &Mesh, q: &[usize; 4]) -> f64 {
+        (0..4)
+            .map(|k| {
+                let (a, b) = (m.nodes[q[k]], m.nodes[q[(k + 1) % 4]]);
+                0.5 * (a[0] * b[1] - b[0] * a[1])
+            })
+            .sum()
+    }
+
+    /// Every edge of the mesh and how many quads hold it.
+    fn edge_counts(m: &Mesh) -> HashMap<(usize, usize), usize> {
+        let mut edges = HashMap::new();
+        for q in &m.quads {
+            for k in 0..4 {
+                let (a, b) = (q[k], q[(k + 1) % 4]);
+                *edges.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+            }
+        }
+        edges
+    }
+
+    /// A coarsened mesh tiles the layer conformingly: positive quads whose areas sum to the
+    /// layer's, every edge inside the layer shared by two quads and every edge held by one
+    /// quad on the layer's boundary, the columns fewer at the bonded face.
+    #[test]
+    fn coarsened_mesh_is_conforming() {
+        for (nx, coarsen) in [(48, 3.0), (64, 2.0), (50, 1.5)] {
+            let grading = Grading {
+                peak_ratio: 4.0,
+                first_layer_over_dx: 1.0,
+                coarsen_at_aspect: coarsen,
+            };
+            let m = Mesh::graded(nx, nx / 2, 1.0, grading);
+            let areas: Vec<f64> = m.quads.iter().map(|q| shoelace(&m, q)).collect();
+            assert!(
+                areas.iter().all(|&a| a > 0.0),
+                "nx {nx}: a quad is not positive"
+            );
+            let total: f64 = areas.iter().sum();
+            assert!((total - 0.5).abs() < 1e-12, "nx {nx}: area {total}");
+            let on_boundary = |n: usize| {
+                let [x, y] = m.nodes[n];
+                x == 0.0 || x == 0.5 || y == 0.0 || (y - 1.0).abs() < 1e-12
+            };
+            for ((a, b), count) in edge_counts(&m) {
+                match count {
+                    1 => assert!(on_boundary(a) && on_boundary(b), "hanging edge {a}–{b}"),
+                    2 => {}
+                    _ => panic!("edge {a}–{b} in {count} quads"),
+                }
+            }
+            assert!(m.top.len() < m.bottom.len() / 2, "nx {nx}: not coarsened");
+            assert_eq!(m.above_bottom.len(), m.bottom.len());
+            assert_eq!(m.sides[0].len(), m.ny + 1);
+            assert!(m.sides[1].iter().all(|&n| m.nodes[n][0] == 0.5));
+        }
+    }
+
+    /// The two-scale scenes' meshes (uniform face, a quarter as many rows as face elements,
+    /// coarsened where the rows reach 4× their width) keep three fifths of their nodes, the
+    /// counts docs/replication.md (R13) quotes.
+    #[test]
+    fn coarsened_two_scale_meshes() {
+        for (nx, coarsened, full) in [(320, 15_093, 26_001), (192, 5_539, 9_457)] {
+            let grading = Grading {
+                coarsen_at_aspect: 4.0,
+                ..Grading::uniform_face()
+            };
+            let m = Mesh::graded(nx, nx / 4, 1.0, grading);
+            assert_eq!((m.nodes.len(), (nx + 1) * (nx / 4 + 1)), (coarsened, full));
+        }
+    }
+
+    /// Without coarsening the mesh is the structured grid: node `(i, j)` has id `j (nx+1) + i`.
+    #[test]
+    fn uncoarsened_mesh_is_the_structured_grid() {
+        let m = Mesh::graded(6, 3, 1.0, Grading::default());
+        assert_eq!(m.nodes.len(), 7 * 4);
+        assert_eq!(m.quads[7], [8, 9, 16, 15]);
+        assert_eq!(m.above_bottom, (7..14).collect::<Vec<_>>());
+        assert_eq!(m.top, (21..28).collect::<Vec<_>>());
+        assert_eq!(m.sides[1], vec![6, 13, 20, 27]);
+    }
 }

@@ -157,17 +157,16 @@ impl Model {
         };
         let mut role = vec![Role::Interior; mesh.nodes.len()];
         if lateral == Lateral::Symmetric {
-            for j in 0..=mesh.ny {
-                role[mesh.id(0, j)] = Role::Side;
-                role[mesh.id(mesh.nx, j)] = Role::Side;
+            for &n in mesh.sides.iter().flatten() {
+                role[n] = Role::Side;
             }
         }
         for &b in &mesh.bottom {
             role[b] = Role::Bottom;
         }
         if lateral == Lateral::Symmetric {
-            role[mesh.id(0, 0)] = Role::BottomCorner;
-            role[mesh.id(mesh.nx, 0)] = Role::BottomCorner;
+            role[mesh.bottom[0]] = Role::BottomCorner;
+            role[mesh.bottom[mesh.nx]] = Role::BottomCorner;
         }
         for &t in &mesh.top {
             role[t] = Role::Top;

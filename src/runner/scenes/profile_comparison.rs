@@ -34,6 +34,9 @@ pub(crate) struct ComparisonSettings<'a> {
     pub depth_ratio: f64,
     /// Face spacing at the valley over that at the peak.
     pub peak_ratio: f64,
+    /// Row height over column width at which the mesh's columns are coarsened threefold (0:
+    /// never; [`crate::fe::Grading::coarsen_at_aspect`]).
+    pub coarsen_at_aspect: f64,
     /// Load until the FE contact fraction reaches this, in (0, 1).
     pub until_contact_fraction: f64,
     /// Mean pressures at which each model is evaluated (≥ 2).
@@ -42,6 +45,17 @@ pub(crate) struct ComparisonSettings<'a> {
     pub fe_error_order: f64,
     /// FE contact fractions below this are left out of the errors.
     pub error_from_contact_fraction: f64,
+}
+
+/// A footer's words for the grading's column coarsening: `, columns coarsened threefold where
+/// the rows reach 4× their width`, or nothing.
+pub(crate) fn coarsening_footer(coarsen_at_aspect: f64) -> String {
+    match coarsen_at_aspect > 0.0 {
+        true => format!(
+            ", columns coarsened threefold where the rows reach {coarsen_at_aspect}× their width"
+        ),
+        false => String::new(),
+    }
 }
 
 impl ComparisonSettings<'_> {
@@ -58,6 +72,11 @@ impl ComparisonSettings<'_> {
         let peak = self.peak_ratio;
         if !(peak.is_finite() && peak > 0.0) {
             return refuse("peak_ratio", peak.to_string(), "> 0".into());
+        }
+        let coarsen = crate::fe::input_ranges::COARSEN_AT_ASPECT;
+        if !coarsen.holds(self.coarsen_at_aspect) {
+            let value = self.coarsen_at_aspect.to_string();
+            return refuse("coarsen_at_aspect", value, coarsen.allowed.into());
         }
         let c = self.until_contact_fraction;
         if !(c > 0.0 && c < 1.0) {
@@ -92,6 +111,7 @@ impl ComparisonSettings<'_> {
             },
             grading: Grading {
                 peak_ratio: self.peak_ratio,
+                coarsen_at_aspect: self.coarsen_at_aspect,
                 ..Grading::default()
             },
             until_contact_fraction: Some(self.until_contact_fraction),

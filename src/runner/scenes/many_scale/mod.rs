@@ -16,7 +16,7 @@ use crate::fe::MeshLevel;
 use crate::models::{profile_contact, CoefficientSet, ModelKind, ModelLaw, Reading};
 use crate::profile::{Profile, Weierstrass};
 use crate::runner::requests::bem_solve::{self, default_grid_points};
-use crate::runner::scenes::profile_comparison::ComparisonSettings;
+use crate::runner::scenes::profile_comparison::{coarsening_footer, ComparisonSettings};
 use crate::runner::scenes::scene_output::{Layout, Remarks};
 use crate::runner::scenes::{Scene, SceneContext, SceneResult};
 use crate::runner::sweep::fe_cases::{FeCase, FePhysics, SolvedCases};
@@ -61,6 +61,12 @@ pub struct ManyScaleScene {
     /// Face spacing at the valley over that at the peak (1: uniform, the small waves lie
     /// everywhere).
     pub peak_ratio: f64,
+    /// Where the rows, growing with depth, reach this many times their column width, the
+    /// columns are coarsened threefold (a conforming transition row; 0, the default: every
+    /// column to the bonded face). Below the small waves' reach this costs the contact fraction
+    /// a small part of the FE error (docs/results.md, two-scale surfaces).
+    #[serde(default)]
+    pub coarsen_at_aspect: f64,
     /// Load until the FE contact fraction reaches this, in (0, 1).
     pub until_contact_fraction: f64,
     /// Mean pressures, evenly up to the FE curve's last, at which every model is evaluated and
@@ -192,6 +198,7 @@ impl ManyScaleScene {
             error_estimate_mesh: self.error_estimate_mesh,
             depth_ratio: self.depth_ratio,
             peak_ratio: self.peak_ratio,
+            coarsen_at_aspect: self.coarsen_at_aspect,
             until_contact_fraction: self.until_contact_fraction,
             model_points: self.model_points,
             fe_error_order: self.fe_error_order,
@@ -323,11 +330,12 @@ impl ManyScaleScene {
 /// The figure's footer line on the FE and the BEM.
 fn footer(s: &ManyScaleScene) -> Vec<String> {
     let fe = format!(
-        "FE: finite strain, neo-Hookean, h/λ = 1, at least {} elements along the face or {} per wavelength of the finest scale (peak ratio {}), {} across the thickness per face element, node events; E* = 1 MPa;",
+        "FE: finite strain, neo-Hookean, h/λ = 1, at least {} elements along the face or {} per wavelength of the finest scale (peak ratio {}), {} across the thickness per face element{}, node events; E* = 1 MPa;",
         s.mesh,
         s.elements_per_finest_wavelength,
         s.peak_ratio,
-        s.depth_ratio
+        s.depth_ratio,
+        coarsening_footer(s.coarsen_at_aspect)
     );
     let estimate = format!(
         "its error estimated against {}/{} times the elements at order {}. BEM: the same layer, linear kinematics, frictionless. Models: docs/replication.md R14.",

@@ -16,7 +16,7 @@ use crate::fe::SolveOptions;
 use crate::models::superposition::superposed_contact;
 use crate::models::{a_over_lambda_at, CoefficientSet, InverseError, ModelKind, ModelLaw, Reading};
 use crate::profile::Profile;
-use crate::runner::scenes::profile_comparison::ComparisonSettings;
+use crate::runner::scenes::profile_comparison::{coarsening_footer, ComparisonSettings};
 use crate::runner::scenes::scene_output::{Layout, Remarks};
 use crate::runner::scenes::{Scene, SceneContext, SceneResult};
 use crate::runner::sweep::fe_cases::{FeCase, FePhysics, SolvedCases};
@@ -55,6 +55,12 @@ pub struct TwoScaleScene {
     /// Face spacing at the valley over that at the peak (1: uniform, the small waves lie
     /// everywhere).
     pub peak_ratio: f64,
+    /// Where the rows, growing with depth, reach this many times their column width, the
+    /// columns are coarsened threefold (a conforming transition row; 0, the default: every
+    /// column to the bonded face). Below the small waves' reach this costs the contact fraction
+    /// a small part of the FE error (docs/results.md, two-scale surfaces).
+    #[serde(default)]
+    pub coarsen_at_aspect: f64,
     /// Load until the FE contact fraction reaches this, in (0, 1).
     pub until_contact_fraction: f64,
     /// Mean pressures at which each model curve is evaluated.
@@ -146,6 +152,7 @@ impl TwoScaleScene {
             error_estimate_mesh: self.error_estimate_mesh,
             depth_ratio: self.depth_ratio,
             peak_ratio: self.peak_ratio,
+            coarsen_at_aspect: self.coarsen_at_aspect,
             until_contact_fraction: self.until_contact_fraction,
             model_points: self.model_points,
             fe_error_order: self.fe_error_order,
@@ -349,7 +356,7 @@ fn fe_footer(s: &TwoScaleScene) -> String {
         .collect();
     let estimate_meshes: Vec<String> = estimate_meshes.iter().map(usize::to_string).collect();
     format!(
-        "FE: finite strain, neo-Hookean, h/λ = 1, mesh {} elements along the face{}{} (peak ratio {}), {} across the thickness per face element, node events; E* = 1 MPa; its error estimated against mesh {} at order {}. Models: docs/replication.md R13.",
+        "FE: finite strain, neo-Hookean, h/λ = 1, mesh {} elements along the face{}{} (peak ratio {}), {} across the thickness per face element{}, node events; E* = 1 MPa; its error estimated against mesh {} at order {}. Models: docs/replication.md R13.",
         s.mesh,
         by_order_footer(&s.mesh_by_order),
         match s.elements_per_small_wavelength {
@@ -358,6 +365,7 @@ fn fe_footer(s: &TwoScaleScene) -> String {
         },
         s.peak_ratio,
         s.depth_ratio,
+        coarsening_footer(s.coarsen_at_aspect),
         estimate_meshes.join(" or "),
         s.fe_error_order
     )
