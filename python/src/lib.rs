@@ -236,7 +236,7 @@ fn solve_on_thread(
 #[pyfunction]
 #[pyo3(signature = (*, ar, tau_max_mpa, mu, elastic_slip_over_element, estar_mpa, kappa_over_g, thickness_over_lambda,
     kinematics, mesh, tolerance, error_estimate, until_a_over_lambda, until_p_over_estar, unload,
-    unloading_substeps, vtk, profile, until_contact_fraction, max_memory, solver, grid_points, points, half_plane))]
+    unloading_substeps, vtk, profile, until_contact_fraction, max_memory, solver, grid_points, points, half_plane, coarsen_at_aspect))]
 #[allow(clippy::too_many_arguments)]
 fn solve<'py>(
     py: Python<'py>,
@@ -263,6 +263,7 @@ fn solve<'py>(
     grid_points: Option<usize>,
     points: Option<usize>,
     half_plane: bool,
+    coarsen_at_aspect: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let solver = parse_name::<Solver>("--solver", solver, &Solver::ALL.map(Solver::name))?;
     // the command line's default: finite strain, but linear for the boundary-element solver
@@ -306,6 +307,7 @@ fn solve<'py>(
         grid_points,
         points,
         half_plane,
+        coarsen_at_aspect,
         ..SolveRequest::new(ar)
     };
     // the notes the command line gives on stderr, for the result's metadata

@@ -266,6 +266,32 @@ def test_a_two_scale_profile_matches_the_cli():
     assert r.contact_fraction[-1] >= 0.5 and max(r.patches) >= 2
 
 
+def test_coarsened_columns_match_the_cli_with_fewer_unknowns():
+    args = ("--profile", "1:0.1,8:0.1", "--mesh", 64, "--until-contact-fraction", 0.5,
+            "--coarsen-at-aspect", 4)
+    rows = cli_rows("solve", *args)
+    r = wavy.solve(profile="1:0.1,8:0.1", mesh=64, until_contact_fraction=0.5,
+                   coarsen_at_aspect=4)
+    assert_same_rows(r, rows)
+    assert r.mesh == (64, 32) and r.unknowns < 2 * 65 * 33
+
+
+@pytest.mark.parametrize(
+    "kwargs,args",
+    [
+        (dict(coarsen_at_aspect=0.5), ["--coarsen-at-aspect", "0.5"]),
+        (dict(coarsen_at_aspect=4, tolerance=0.01),
+         ["--coarsen-at-aspect", "4", "--tolerance", "0.01"]),
+    ],
+)
+def test_coarsening_out_of_range_or_with_a_tolerance_is_the_cli_error(kwargs, args):
+    message, rc = cli_error("solve", "--ar", "0.1", *args)
+    assert rc == 2
+    with pytest.raises(ValueError) as e:
+        wavy.solve(ar=0.1, **kwargs)
+    assert str(e.value) == python_words(message)
+
+
 def test_a_profile_the_mesh_cannot_resolve_is_a_value_error():
     with pytest.raises(ValueError, match="harmonic 16"):
         wavy.solve(profile="1:0.1,16:0.1", mesh=32)

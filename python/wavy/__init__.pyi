@@ -108,6 +108,7 @@ def solve(
     points: Optional[int] = None,
     half_plane: bool = False,
     unloading_substeps: Optional[int] = None,
+    coarsen_at_aspect: Optional[float] = None,
 ) -> Result: ...
 def run(spec_path: PathLike, out: Optional[PathLike] = None,
         cache: Optional[PathLike] = None) -> List[str]: ...

@@ -37,6 +37,7 @@ def solve(
     points: Optional[int] = None,
     half_plane: bool = False,
     unloading_substeps: Optional[int] = None,
+    coarsen_at_aspect: Optional[float] = None,
 ) -> Result:
     """One finite-element load curve, as ``wavy solve`` computes it with the same options.
 
@@ -136,6 +137,14 @@ def solve(
         branch sampled finer, so that the face's work of friction and the trapezoid sum of the
         loop's work converge with it (docs/verification.md, "The energy audit", measures what
         each choice does). Default None: 1.
+    coarsen_at_aspect : float, optional
+        Coarsen the mesh's columns threefold wherever its rows, growing with depth, reach
+        this many times their width, 0 or >= 1 (a conforming transition row): at 4 a
+        profile's curve on a uniform face takes about half the time and moves by a small
+        part of its error (docs/replication.md R13, "Columns coarsened with depth"). Not with
+        ``tolerance`` or ``error_estimate``, whose errors are measured on meshes that keep
+        every column; finite-element solver only. Default None: every column to the bonded
+        face.
 
     Returns
     -------
@@ -210,6 +219,7 @@ def solve(
         points=_checks.optional_count("points", points),
         half_plane=_checks.flag("half_plane", half_plane),
         unloading_substeps=_checks.optional_count("unloading_substeps", unloading_substeps),
+        coarsen_at_aspect=_checks.optional_number("coarsen_at_aspect", coarsen_at_aspect),
     )
     stopped = fields.pop("stopped")
     result = Result(fields)

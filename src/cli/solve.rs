@@ -83,6 +83,14 @@ pub struct SolveArgs {
     /// [default: default]
     #[arg(long, value_parser = super::input::mesh, conflicts_with = "tolerance")]
     pub mesh: Option<MeshLevel>,
+    /// Coarsen the mesh's columns threefold wherever its rows, growing with depth, reach this
+    /// many times their width (0 or ≥ 1; a conforming transition row, no hanging nodes): at 4 a
+    /// profile's curve on a uniform face takes about half the time and moves by a small part of
+    /// its error (docs/replication.md R13, "Columns coarsened with depth"). Not with --tolerance
+    /// or --error-estimate, whose errors are measured on meshes that keep every column
+    /// [default: every column to the bonded face]
+    #[arg(long, allow_hyphen_values = true)]
+    pub coarsen_at_aspect: Option<f64>,
     /// Instead of --mesh: the coarsest mesh whose measured largest relative error of p̄/E* at
     /// this (AR, τ_max) is at most this (e.g. 0.005); the choice goes to stderr
     /// (measurements: expected/speed_accuracy.csv, default physics only).
@@ -160,6 +168,7 @@ impl SolveArgs {
                 Solver::BoundaryElement => Kinematics::Linear,
             }),
             mesh: self.mesh,
+            coarsen_at_aspect: self.coarsen_at_aspect,
             tolerance: self.tolerance,
             error_estimate: self.error_estimate,
             until_a_over_lambda: self.until_a_over_lambda,

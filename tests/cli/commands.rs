@@ -291,6 +291,56 @@ fn unloading_substeps_split_each_unloading_interval() {
     }
 }
 
+/// `--coarsen-at-aspect 4` joins the deep columns three to one: a profile's curve has the same
+/// events, its mean pressures within COARSENED_PRESSURE_RTOL of the mesh that keeps every column.
+/// Below 1, with a measured-error option (`--tolerance`, `--error-estimate`) or with the
+/// boundary-element solver it is refused, naming the flag.
+#[test]
+fn coarsened_columns_keep_a_profiles_curve() {
+    // measured 2026-11-29: at most 1.2e-4 over the 49 rows of this curve
+    const COARSENED_PRESSURE_RTOL: f64 = 2.5e-4;
+    let pressures = |extra: &[&str]| {
+        let base = "solve --profile 1:0.1,8:0.05 --mesh 64 --until-contact-fraction 0.6";
+        let args: Vec<&str> = base.split(' ').chain(extra.iter().copied()).collect();
+        let o = wavy(&args, here());
+        assert!(o.status.success(), "{extra:?}: {}", stderr(&o));
+        let text = stdout(&o);
+        let p = text
+            .lines()
+            .next()
+            .unwrap()
+            .split(',')
+            .position(|c| c == "p_over_estar");
+        let p = p.expect("a p_over_estar column");
+        let rows: Vec<f64> = (text.lines().skip(1))
+            .map(|l| l.split(',').nth(p).unwrap().parse().unwrap())
+            .collect();
+        rows
+    };
+    let full = pressures(&[]);
+    let coarsened = pressures(&["--coarsen-at-aspect", "4"]);
+    assert_eq!(full.len(), coarsened.len());
+    let largest = (full.iter().zip(&coarsened))
+        .map(|(f, c)| (c / f - 1.0).abs())
+        .fold(0.0, f64::max);
+    assert!(largest > 0.0, "the mesh did not change");
+    assert!(largest <= COARSENED_PRESSURE_RTOL, "{largest:e}");
+    for args in [
+        &["--coarsen-at-aspect", "0.5"][..],
+        &["--coarsen-at-aspect", "4", "--tolerance", "0.01"][..],
+        &["--coarsen-at-aspect", "4", "--error-estimate"][..],
+        &["--coarsen-at-aspect", "4", "--solver", "bem"][..],
+    ] {
+        let o = wavy(&[&["solve", "--ar", "0.1"][..], args].concat(), here());
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains("--coarsen-at-aspect"),
+            "{args:?}: {}",
+            stderr(&o)
+        );
+    }
+}
+
 /// A reader that closes the pipe early (`wavy eval … | head -1`) ends every command quietly
 /// with exit 0: no panic, no error message.
 #[test]

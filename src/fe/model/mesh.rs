@@ -1,9 +1,9 @@
-//! Structured quad mesh of the half-wavelength layer, graded toward the contact face
-//! and toward the indenter's peak.
+//! Quad mesh of the half-wavelength layer, graded toward the contact face and toward the
+//! indenter's peak, its columns optionally coarsened with depth.
 //!
 //! Domain (units of λ): `X ∈ [0, ½]`, `Y ∈ [0, h]`; the contact face is `Y = 0`, the
-//! bonded face `Y = h`. Node `(i, j)` (column `i ∈ 0..=nx`, row `j ∈ 0..=ny`) has id
-//! `j (nx+1) + i`. Quads are counter-clockwise.
+//! bonded face `Y = h`. Without coarsening the mesh is structured: node `(i, j)` (column
+//! `i ∈ 0..=nx`, row `j ∈ 0..=ny`) has id `j (nx+1) + i`. Quads are counter-clockwise.
 //!
 //! Grading:
 //! * along `X`: `X = ½ (ξ + β ξ²)/(1 + β)` with `ξ` uniform, so the spacing at `X = ½`
@@ -17,6 +17,13 @@
 //!   the sliding node next to the peak; docs/replication.md R10);
 //! * along `Y`: geometric layers whose first (bottom) layer is
 //!   `first_layer_over_dx × (½/nx)` thick, growing toward the bonded face.
+//!
+//! Coarsening ([`Grading::coarsen_at_aspect`]): in a row whose height reaches that many times
+//! the mean width of its columns, a transition row joins every three columns into one with a
+//! conforming four-quad template (no hanging nodes), so that the deep elements are not tall
+//! slivers: the fields the small waves of a profile raise die out within a small wavelength of
+//! the face, and below that one column in three resolves the big wave's (docs/replication.md
+//! R13, "Columns coarsened with depth").
 
 /// Mesh resolution. Each named level has [`MeshLevel::REFINEMENT_RATIO`] times the
 /// element counts of the previous one (the three levels of the convergence study).
@@ -72,6 +79,16 @@ impl MeshLevel {
     pub fn unknowns(self) -> usize {
         let (nx, ny) = self.counts();
         2 * (nx + 1) * (ny + 1)
+    }
+
+    /// [`Self::unknowns`] of the mesh as `grading` builds it on a layer `thickness` thick: fewer
+    /// where it coarsens the columns with depth.
+    pub fn unknowns_graded(self, grading: Grading, thickness: f64) -> usize {
+        if grading.coarsen_at_aspect == 0.0 {
+            return self.unknowns();
+        }
+        let (nx, ny) = self.counts();
+        2 * Mesh::graded(nx, ny, thickness, grading).nodes.len()
     }
 }
 

@@ -108,6 +108,7 @@ impl SolveRequest {
         }
         let fe_only = [
             ("--mesh", self.mesh.is_some()),
+            ("--coarsen-at-aspect", self.coarsen_at_aspect.is_some()),
             ("--tolerance", self.tolerance.is_some()),
             ("--error-estimate", self.error_estimate),
             ("--max-memory", self.max_memory.is_some()),

@@ -94,8 +94,8 @@ pub struct SolveOutcome {
     pub mesh: Option<MeshLevel>,
     /// The boundary-element grid, points per wavelength (`None` for the finite-element solver).
     pub grid_points: Option<usize>,
-    /// Unknowns: of the mesh, two per node, 2·(nx + 1)·(ny + 1); of the grid, one pressure
-    /// per point.
+    /// Unknowns: of the mesh, two per node (2·(nx + 1)·(ny + 1) where every column reaches
+    /// the bonded face); of the grid, one pressure per point.
     pub unknowns: usize,
     pub extra: ExtraColumn,
     /// Loading rows, then (with `unload`) unloading rows, in the order they converged.

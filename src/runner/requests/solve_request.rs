@@ -47,6 +47,9 @@ pub struct SolveRequest {
     pub kinematics: Kinematics,
     /// The mesh (`None`: the default mesh, or the one `tolerance` chooses; both is refused).
     pub mesh: Option<MeshLevel>,
+    /// Coarsen the mesh's columns threefold where its rows reach this many times their width
+    /// (0 or ≥ 1; `None`: every column to the bonded face; [`crate::fe::Grading::coarsen_at_aspect`]).
+    pub coarsen_at_aspect: Option<f64>,
     /// The coarsest mesh whose measured relative error is at most this (in (0, 1)).
     pub tolerance: Option<f64>,
     /// Also solve the next coarser mesh and estimate each point's relative error.
@@ -89,6 +92,7 @@ impl SolveRequest {
             thickness_over_lambda: defaults::thickness_over_lambda(),
             kinematics: Kinematics::Finite,
             mesh: None,
+            coarsen_at_aspect: None,
             tolerance: None,
             error_estimate: false,
             until_a_over_lambda: SolveOptions::default().until_a_over_lambda,
@@ -182,6 +186,9 @@ impl SolveRequest {
             &input_ranges::ELASTIC_SLIP_OVER_ELEMENT,
             self.elastic_slip_over_element,
         )?;
+        if let Some(c) = self.coarsen_at_aspect {
+            within("--coarsen-at-aspect", &input_ranges::COARSEN_AT_ASPECT, c)?;
+        }
         let x = self.until_a_over_lambda;
         within(
             "--until-a-over-lambda",
@@ -245,6 +252,19 @@ impl SolveRequest {
                 ));
             }
         }
+        if let Some(c) = self.coarsen_at_aspect.filter(|&c| c > 0.0) {
+            let measured = [
+                ("--tolerance", self.tolerance.is_some()),
+                ("--error-estimate", self.error_estimate),
+            ];
+            if let Some((flag, _)) = measured.iter().find(|(_, given)| *given) {
+                return Err(refused(
+                    "--coarsen-at-aspect",
+                    c,
+                    &format!("cannot be used with {flag}, whose errors are measured on meshes that keep every column"),
+                ));
+            }
+        }
         if let (Some(mesh), Some(_)) = (self.mesh, self.tolerance) {
             return Err(refused(
                 "--mesh",
@@ -282,6 +302,9 @@ impl SolveRequest {
         };
         if let Some(n) = self.unloading_substeps {
             options.steps.unloading_substeps = n;
+        }
+        if let Some(c) = self.coarsen_at_aspect {
+            options.grading.coarsen_at_aspect = c;
         }
         let case = FeCase::new(&physics, self.ar, self.tau_max_mpa, options);
         let problem = LayerProblem {
@@ -374,7 +397,8 @@ impl PreparedSolve {
         SolveOutcome {
             mesh: Some(self.mesh()),
             grid_points: None,
-            unknowns: self.mesh().unknowns(),
+            unknowns: (self.mesh())
+                .unknowns_graded(self.options.grading, self.problem.thickness_over_lambda),
             extra: self.extra_column(),
             rows,
             work,
