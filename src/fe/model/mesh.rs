@@ -409,11 +409,17 @@ mod tests {
 
     /// The two-scale scenes' meshes (uniform face, a quarter as many rows as face elements,
     /// coarsened where the rows reach 4× their width) keep three fifths of their nodes, a
-    /// single sinusoid's 192 × 96 three quarters: the counts docs/replication.md (R13) and
-    /// docs/performance.md quote.
+    /// single sinusoid's 192 × 96 and 512 × 256 three quarters: the counts docs/replication.md
+    /// (R13) and docs/performance.md quote.
     #[test]
     fn coarsened_mesh_node_counts() {
-        for (nx, ny, coarsened) in [(320, 80, 15_093), (192, 48, 5_539), (192, 96, 13_857)] {
+        let counts = [
+            (320, 80, 15_093),
+            (192, 48, 5_539),
+            (192, 96, 13_857),
+            (512, 256, 96_821),
+        ];
+        for (nx, ny, coarsened) in counts {
             let grading = Grading {
                 coarsen_at_aspect: 4.0,
                 ..Grading::uniform_face()

@@ -314,7 +314,8 @@ impl SolveRequest {
         // a profile gets a mesh that resolves it, or is refused here, before any solve
         let (mesh, mesh_note) = profile_mesh::choose(&problem, &case.options, self.mesh.is_some())?;
         // the memory it needs, refused above the caller's cap or what is available
-        let cost = CostEstimate::of(mesh);
+        let unknowns = mesh.unknowns_graded(case.options.grading, problem.thickness_over_lambda);
+        let cost = CostEstimate::with_unknowns(mesh, unknowns);
         cost.check(self.max_memory)?;
         let told = (mesh.counts().0 >= cost_estimate::TOLD_FROM_ELEMENTS).then(|| cost.describe());
         Ok(PreparedSolve {
