@@ -232,9 +232,9 @@ impl SolveRequest {
         Ok(())
     }
 
-    /// [`Self::prepare`] once the ranges hold.
-    fn prepare_fe(&self) -> Result<PreparedSolve, RequestError> {
-        let x = self.until_a_over_lambda;
+    /// The finite-element options that cannot be combined: a measured-error option (`--tolerance`,
+    /// `--error-estimate`) with a profile or a coarsened mesh, and `--mesh` with `--tolerance`.
+    fn check_fe_combinations(&self) -> Result<(), RequestError> {
         if !self.finer_harmonics.is_empty() {
             // the measured tiers and their convergence orders are a sinusoid's
             if let Some(t) = self.tolerance {
@@ -272,6 +272,13 @@ impl SolveRequest {
                 "cannot be used with --tolerance (which chooses the mesh)",
             ));
         }
+        Ok(())
+    }
+
+    /// [`Self::prepare`] once the ranges hold.
+    fn prepare_fe(&self) -> Result<PreparedSolve, RequestError> {
+        self.check_fe_combinations()?;
+        let x = self.until_a_over_lambda;
         let physics = FePhysics {
             estar_mpa: self.estar_mpa,
             thickness_over_lambda: self.thickness_over_lambda,
