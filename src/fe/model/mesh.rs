@@ -228,7 +228,7 @@ impl Mesh {
         for (j, rows) in ys.windows(2).enumerate() {
             let (y0, y1) = (rows[0], rows[1]);
             let columns = line.len() - 1;
-            let width = 0.5 / columns as f64;
+            let width = mesh.line_width(&line) / columns as f64;
             let coarsen = j >= 1
                 && columns >= TRANSITION_COLUMNS
                 && grading.coarsen_at_aspect > 0.0
@@ -244,6 +244,12 @@ impl Mesh {
         }
         mesh.top = line;
         mesh
+    }
+
+    /// The extent in `X` of a line of nodes (the layer's width, ½).
+    fn line_width(&self, line: &[usize]) -> f64 {
+        let last = *line.last().expect("a line has nodes");
+        self.nodes[last][0] - self.nodes[line[0]][0]
     }
 
     fn add_side_nodes(&mut self, line: &[usize]) {
@@ -276,18 +282,18 @@ impl Mesh {
     /// columns left over at `X = ½` (fewer than a group) continue as plain quads. Returns the
     /// upper line of nodes at height `y1`.
     fn transition_row(&mut self, line: &[usize], y0: f64, y1: f64) -> Vec<usize> {
+        let xs: Vec<f64> = line.iter().map(|&n| self.nodes[n][0]).collect();
         let columns = line.len() - 1;
         let groups = columns / TRANSITION_COLUMNS;
-        let x = |m: &Self, n: usize| m.nodes[n][0];
-        let mut upper = Vec::with_capacity(groups + 1 + columns % TRANSITION_COLUMNS);
-        for g in 0..=groups {
-            upper.push(self.add_node([x(self, line[TRANSITION_COLUMNS * g]), y1]));
-        }
+        let mut upper: Vec<usize> = (0..=groups)
+            .map(|g| self.add_node([xs[TRANSITION_COLUMNS * g], y1]))
+            .collect();
         let y_mid = 0.5 * (y0 + y1);
         for g in 0..groups {
-            let t = &line[TRANSITION_COLUMNS * g..=TRANSITION_COLUMNS * (g + 1)];
-            let m1 = self.add_node([x(self, t[1]), y_mid]);
-            let m2 = self.add_node([x(self, t[2]), y_mid]);
+            let first = TRANSITION_COLUMNS * g;
+            let t = &line[first..=first + TRANSITION_COLUMNS];
+            let m1 = self.add_node([xs[first + 1], y_mid]);
+            let m2 = self.add_node([xs[first + 2], y_mid]);
             let (b0, b3) = (upper[g], upper[g + 1]);
             self.quads.push([t[0], t[1], m1, b0]);
             self.quads.push([t[1], t[2], m2, m1]);
@@ -295,7 +301,7 @@ impl Mesh {
             self.quads.push([m1, m2, b3, b0]);
         }
         for i in TRANSITION_COLUMNS * groups..columns {
-            let right = self.add_node([x(self, line[i + 1]), y1]);
+            let right = self.add_node([xs[i + 1], y1]);
             let left = *upper.last().expect("the group's last node");
             self.quads.push([line[i], line[i + 1], right, left]);
             upper.push(right);
