@@ -13,7 +13,16 @@ pub(crate) fn loaded_sinusoid(
     aspect_ratio: f64,
     until_a_over_lambda: f64,
 ) -> (Model, Assembly, SolveOptions, Vec<State>) {
-    let (problem, mut opts) = coarse_sinusoid(aspect_ratio, Interface::Frictionless);
+    loaded_sinusoid_with(aspect_ratio, until_a_over_lambda, Interface::Frictionless)
+}
+
+/// [`loaded_sinusoid`] with the interface `interface`.
+pub(crate) fn loaded_sinusoid_with(
+    aspect_ratio: f64,
+    until_a_over_lambda: f64,
+    interface: Interface,
+) -> (Model, Assembly, SolveOptions, Vec<State>) {
+    let (problem, mut opts) = coarse_sinusoid(aspect_ratio, interface);
     opts.until_a_over_lambda = until_a_over_lambda;
     let model = build_model(&problem, &opts);
     let mut asm = Assembly::new(&model);
