@@ -118,12 +118,13 @@ fn path_curvature(model: &Model, asm: &mut Assembly, st: &State, rate: &[f64]) -
 /// way along the path. Two pieces are not smooth there. A sliding node sits at the edge of its
 /// stick band once its step is committed (`e = ±e_c`), so the trial a little back along the path
 /// would put it on the stick spring: its committed elastic slip is moved one band width further
-/// along its slip ([`SmoothPieces::state`]). A stuck node's force `−L e*/e_c` curves as `L′ e*′/e_c`,
-/// the curvature of a band a few thousandths of an element wide that a load step crosses: its
-/// row takes the equilibrium part `c·g` alone ([`SmoothPieces::stuck`]). Taken as they are, both
-/// make the quotient the band's, not the path's: at μ 10⁻⁶ the frictional curve then took 2.5 times
-/// the Newton iterations of the frictionless one, and the predictor stayed first order
-/// (docs/performance.md, "friction's predictor").
+/// along its slip ([`SmoothPieces::state`]). A stuck node's force `−L e*/e_c` has the second
+/// derivative `2 L′ e*′/e_c` (and more) along the path, the curvature of a band a few thousandths of
+/// an element wide that a load step crosses: its row takes the equilibrium part `c·g` alone
+/// ([`SmoothPieces::stuck`]). Taken as they are, both make the quotient the band's, not the path's,
+/// which kept the frictional predictor first order; at μ 10⁻⁶ the frictional curve then took 2.5
+/// times the Newton iterations of the frictionless one (docs/performance.md, "friction's
+/// predictor").
 struct SmoothPieces {
     /// The state, each sliding node's committed elastic slip moved beyond its band's edge.
     state: State,
@@ -278,7 +279,12 @@ pub(crate) fn third_order_term(
 /// A displacement-controlled step from the converged state `from` to the slab displacement
 /// `d` (exactly: `from.d + (d − from.d)` may differ from `d` in the last bit): predicted along
 /// the load tangent of `from`, then equilibrated with its active set, the nodes of `hold` kept
-/// as they are. Returns the state (slip not committed) and the Newton iterations.
+/// as they are. With friction, a step that fails from the second-order prediction is tried
+/// again from the first-order one: at μ 100 the second-order predictor stopped two unloading
+/// branches at mesh 96 (a line search that found no step, the residual at 7·10⁻⁷) that the
+/// first-order one completes (docs/performance.md, "friction's predictor"). Returns the state
+/// (slip not committed) and the Newton iterations, a failed first try's included; a failure is
+/// the last try's.
 pub(crate) fn displacement_step(
     model: &Model,
     asm: &mut Assembly,
@@ -288,15 +294,50 @@ pub(crate) fn displacement_step(
     hold: Hold,
 ) -> Result<(State, usize), StepFail> {
     let tangent = tangent_at(model, asm, opts, from);
-    let mut st =
-        predictor(model, from, None, d - from.d, tangent.as_ref()).ok_or(StepFail::Inverted {
+    let step = Step { from, d, hold };
+    let predicted = step.equilibrated(model, asm, opts, tangent.as_ref());
+    match (predicted, tangent) {
+        (Err(failed), Some(z)) if !model.is_potential() && z.curvature.is_some() => {
+            let first_order = LoadTangent {
+                curvature: None,
+                third_order: None,
+                ..z
+            };
+            let (st, iterations) = step.equilibrated(model, asm, opts, Some(&first_order))?;
+            Ok((st, iterations + failed.iterations()))
+        }
+        (result, _) => result,
+    }
+}
+
+/// A displacement-controlled step: from the converged state `from` to the slab displacement `d`,
+/// the nodes of `hold` kept as they are ([`displacement_step`]).
+struct Step<'a> {
+    from: &'a State,
+    d: f64,
+    hold: Hold,
+}
+
+impl Step<'_> {
+    /// The step predicted along `tangent` ([`predictor`]) and equilibrated, with its Newton
+    /// iterations.
+    fn equilibrated(
+        &self,
+        model: &Model,
+        asm: &mut Assembly,
+        opts: &SolveOptions,
+        tangent: Option<&LoadTangent>,
+    ) -> Result<(State, usize), StepFail> {
+        let predicted = predictor(model, self.from, None, self.d - self.from.d, tangent);
+        let mut st = predicted.ok_or(StepFail::Inverted {
             iteration: 0,
             residual: f64::NAN,
         })?;
-    st.d = d;
-    model.enforce_constraints(&mut st);
-    let iters = equilibrate(model, asm, &mut st, opts, hold)?;
-    Ok((st, iters))
+        st.d = self.d;
+        model.enforce_constraints(&mut st);
+        let iters = equilibrate(model, asm, &mut st, opts, self.hold)?;
+        Ok((st, iters))
+    }
 }
 
 #[cfg(test)]
