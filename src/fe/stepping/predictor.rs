@@ -94,11 +94,22 @@ pub(crate) fn load_tangent(model: &Model, asm: &mut Assembly, st: &State) -> Opt
 /// ([`CURVATURE_STEP_OVER_AMPLITUDE`]), with friction on the smooth pieces of the law
 /// ([`SmoothPieces`]); `None` where a trial is inverted or the solve fails.
 fn path_curvature(model: &Model, asm: &mut Assembly, st: &State, rate: &[f64]) -> Option<Vec<f64>> {
-    let eps = CURVATURE_STEP_OVER_AMPLITUDE * model.indenter.amplitude();
     let pieces = SmoothPieces::of(model, asm, st);
+    curvature_on(model, asm, &pieces, rate)
+}
+
+/// [`path_curvature`] with the difference quotient evaluated on `pieces`.
+fn curvature_on(
+    model: &Model,
+    asm: &mut Assembly,
+    pieces: &SmoothPieces,
+    rate: &[f64],
+) -> Option<Vec<f64>> {
+    let eps = CURVATURE_STEP_OVER_AMPLITUDE * model.indenter.amplitude();
+    let d = pieces.state.d;
     let mut along = |step: f64| {
         let mut moved = pieces.state.clone();
-        moved.d = st.d + step;
+        moved.d = d + step;
         model.enforce_constraints(&mut moved);
         let moved = model.updated(&moved, rate, step);
         pieces.residual(model, asm, &moved)
@@ -428,24 +439,11 @@ mod tests {
         let rate = load_tangent(&model, &mut asm, last)
             .expect("converged")
             .rate;
-        let eps = CURVATURE_STEP_OVER_AMPLITUDE * model.indenter.amplitude();
-        let mut along = |step: f64| {
-            let mut moved = last.clone();
-            moved.d = last.d + step;
-            model.enforce_constraints(&mut moved);
-            let moved = model.updated(&moved, &rate, step);
-            asm.assemble(&model, &moved, false)
-                .expect("not inverted")
-                .resid
+        let as_they_are = SmoothPieces {
+            state: last.clone(),
+            stuck: Vec::new(),
         };
-        let (here, plus, minus) = (along(0.0), along(eps), along(-eps));
-        let second: Vec<f64> = (plus.iter().zip(&minus).zip(&here))
-            .map(|((p, m), r)| -(p + m - 2.0 * r) / (eps * eps))
-            .collect();
-        load_tangent(&model, &mut asm, last).expect("converged");
-        let mut rhs = [second];
-        asm.sys.solve_again(&mut rhs).expect("factored");
-        let raw = apart(&rhs[0]);
+        let raw = apart(&curvature_on(&model, &mut asm, &as_they_are, &rate).expect("a curvature"));
         println!(
             "curvature apart from the frictionless one: smooth pieces {smooth:e}, raw {raw:e}"
         );
