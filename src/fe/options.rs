@@ -170,6 +170,12 @@ pub struct NewtonOptions {
     /// the converged curve where each increment has one solution (test
     /// `exact_stick_decision_stiffness_changes_the_path_not_the_curve`; docs/replication.md R3).
     pub stick_decision_stiffness: f64,
+    /// Carry each element's pressure through a Newton solve as an unknown of its own, the
+    /// mixed method's pressure iterate, predicted with the positions
+    /// ([`crate::fe::model::mixed_pressure`]): the tangent's geometric volumetric term then
+    /// uses it instead of `κ (v/V − 1)` of the current positions. It changes the Newton path,
+    /// not the converged state (docs/performance.md, "the pressure iterate").
+    pub pressure_iterate: bool,
 }
 
 impl Default for NewtonOptions {
@@ -185,6 +191,7 @@ impl Default for NewtonOptions {
             increment_atol: 1e-14,
             semismooth_friction: true,
             stick_decision_stiffness: 1.0,
+            pressure_iterate: true,
         }
     }
 }

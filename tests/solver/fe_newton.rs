@@ -8,24 +8,77 @@ use wavy::fe::*;
 /// The mean of the `newton_iterations` column of the frictionless AR 0.3 curve on `mesh` face
 /// elements, loaded to a/λ 0.45.
 fn mean_iterations(mesh: usize) -> f64 {
-    let problem = wavy::defaults::layer_problem(0.3);
     let opts = SolveOptions {
         mesh: MeshLevel::along_face(mesh),
         ..SolveOptions::default()
     };
-    let curve = solve_curve(&problem, &opts, &mut |_| ControlFlow::Continue(()))
-        .unwrap_or_else(|f| panic!("mesh {mesh}: {}", f.error));
+    iterations_per_point(&curve(&wavy::defaults::layer_problem(0.3), &opts))
+}
+
+fn curve(problem: &LayerProblem, opts: &SolveOptions) -> Curve {
+    solve_curve(problem, opts, &mut |_| ControlFlow::Continue(()))
+        .unwrap_or_else(|f| panic!("{problem:?}: {}", f.error))
+}
+
+fn iterations_per_point(curve: &Curve) -> f64 {
     let total: usize = curve.points.iter().map(|p| p.newton_iterations).sum();
     total as f64 / curve.points.len() as f64
 }
 
 /// AR 0.3, the hardest of Fig. 3 for Newton: its long steps toward the valley, where the graded
-/// face is coarse. Measured 3.26 per point on mesh 48 and 2.98 on mesh 64 (3.41 and 3.44 with the
-/// second-order predictor alone).
+/// face is coarse. Measured 2.80 per point on mesh 48 and 2.58 on mesh 64 (3.26 and 2.98 without
+/// the pressure iterate).
 #[test]
 fn frictionless_newton_iterations_per_point_at_ar_0_3() {
     let (on_48, on_64) = (mean_iterations(48), mean_iterations(64));
     eprintln!("mean Newton iterations per point: mesh 48 {on_48:.3}, mesh 64 {on_64:.3}");
-    assert!(on_48 <= 3.3, "mesh 48: {on_48}");
-    assert!(on_64 <= 3.0, "mesh 64: {on_64}");
+    assert!(on_48 <= 2.85, "mesh 48: {on_48}");
+    assert!(on_64 <= 2.65, "mesh 64: {on_64}");
+}
+
+/// The pressure iterate (`NewtonOptions::pressure_iterate`, on by default) changes the Newton
+/// path, not the curve: frictionless and with friction (AR 0.3, τ_max/E* 0.1, μ 1; coarse mesh
+/// to a/λ 0.4) every point matches the curve without it to 10⁻⁸ relative (the Newton tolerance is
+/// 10⁻¹⁰ of the nodal forces; measured 8.0·10⁻⁹ and 3.8·10⁻⁹, printed). Frictionless it takes
+/// 2.83 Newton iterations per point against 4.35 (asserted fewer); with friction, on this coarse
+/// mesh, 9.80 against 9.57 (printed, not asserted: docs/performance.md, "the pressure iterate",
+/// has the frictional curves it shortens and those it lengthens).
+#[test]
+fn the_pressure_iterate_changes_the_path_not_the_curve() {
+    let opts = |pressure_iterate| SolveOptions {
+        mesh: MeshLevel::Coarse,
+        until_a_over_lambda: 0.4,
+        newton: NewtonOptions {
+            pressure_iterate,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let frictional = LayerProblem {
+        interface: Interface::coulomb_orowan(1.0, 0.1, 0.005),
+        ..wavy::defaults::layer_problem(0.3)
+    };
+    for problem in [wavy::defaults::layer_problem(0.3), frictional] {
+        let (with, without) = (curve(&problem, &opts(true)), curve(&problem, &opts(false)));
+        assert_eq!(with.points.len(), without.points.len());
+        let mut largest = 0.0_f64;
+        for (p, q) in with.points.iter().zip(&without.points) {
+            for (x, y) in [
+                (p.a_over_lambda, q.a_over_lambda),
+                (p.p_over_estar, q.p_over_estar),
+            ] {
+                largest = largest.max((x / y - 1.0).abs());
+            }
+        }
+        let (on, off) = (iterations_per_point(&with), iterations_per_point(&without));
+        eprintln!(
+            "{:?}: largest relative difference {largest:.2e}; Newton iterations per point {on:.3} \
+             with the pressure iterate, {off:.3} without",
+            problem.interface
+        );
+        assert!(largest <= 1e-8, "{:?}: {largest}", problem.interface);
+        if problem.interface == Interface::Frictionless {
+            assert!(on < off, "frictionless: {on} against {off}");
+        }
+    }
 }

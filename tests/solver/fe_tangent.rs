@@ -18,7 +18,7 @@ fn element_gradient_and_hessian_match_central_differences() {
         let mat = NeoHooke { g: 1.0, kappa };
         let (xr, x) = distorted();
         let q = QuadRef::new(&xr);
-        let t = element::tangent(&q, &mat, &x).expect("valid element");
+        let t = element::tangent(&q, &mat, &x, None).expect("valid element");
         let h = 1e-6;
         let gmax = t.grad.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let hmax = t.hess.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
@@ -35,8 +35,8 @@ fn element_gradient_and_hessian_match_central_differences() {
                 "grad[{a}] {fd} vs {}",
                 t.grad[a]
             );
-            let tp = element::tangent(&q, &mat, &xp).unwrap();
-            let tm = element::tangent(&q, &mat, &xm).unwrap();
+            let tp = element::tangent(&q, &mat, &xp, None).unwrap();
+            let tm = element::tangent(&q, &mat, &xm, None).unwrap();
             for b in 0..8 {
                 let fd = (tp.grad[b] - tm.grad[b]) / (2.0 * h);
                 assert!(
@@ -47,6 +47,52 @@ fn element_gradient_and_hessian_match_central_differences() {
             }
         }
     }
+}
+
+/// A geometric pressure given to the tangent (the mixed method's pressure iterate) replaces
+/// `κ (v/V − 1)` in the volumetric term `p ∇²v` alone: given that very value the tangent is the
+/// condensed one, and given another it differs by `(p − κ (v/V − 1)) ∇²v`, whose only entries
+/// are `±½` of the difference between the x of a corner and the y of its two neighbours (the
+/// shoelace area's second derivatives); energy and gradient do not change.
+#[test]
+fn a_geometric_pressure_changes_the_volumetric_geometric_term_alone() {
+    let mat = NeoHooke {
+        g: 1.0,
+        kappa: 1000.0,
+    };
+    let (xr, x) = distorted();
+    let q = QuadRef::new(&xr);
+    let condensed = element::tangent(&q, &mat, &x, None).unwrap();
+    let own = mat.kappa * (element::shoelace(&x) / q.area - 1.0);
+    let same = element::tangent(&q, &mat, &x, Some(own)).unwrap();
+    let shift = 2.5;
+    let other = element::tangent(&q, &mat, &x, Some(own + shift)).unwrap();
+    let hmax = condensed
+        .hess
+        .iter()
+        .flatten()
+        .fold(0.0_f64, |m, v| m.max(v.abs()));
+    for r in 0..8 {
+        for c in 0..8 {
+            let (k, l) = (r / 2, c / 2);
+            let second = match (r % 2, c % 2) {
+                (0, 1) if l == (k + 1) % 4 => 0.5,
+                (0, 1) if l == (k + 3) % 4 => -0.5,
+                (1, 0) if k == (l + 1) % 4 => 0.5,
+                (1, 0) if k == (l + 3) % 4 => -0.5,
+                _ => 0.0,
+            };
+            assert!((same.hess[r][c] - condensed.hess[r][c]).abs() <= 1e-13 * hmax);
+            let moved = other.hess[r][c] - condensed.hess[r][c];
+            assert!(
+                (moved - shift * second).abs() <= 1e-12 * hmax,
+                "hess[{r}][{c}]: moved {moved}, expected {}",
+                shift * second
+            );
+        }
+    }
+    assert_eq!(other.energy, condensed.energy);
+    assert_eq!(other.grad, condensed.grad);
 }
 
 /// The gradient-only path (`element::gradient`, used when no matrix is assembled) and
@@ -62,7 +108,7 @@ fn gradient_path_and_generic_material_tangent_agree() {
     };
     let (xr, x) = distorted();
     let q = QuadRef::new(&xr);
-    let t = element::tangent(&q, &mat, &x).unwrap();
+    let t = element::tangent(&q, &mat, &x, None).unwrap();
     let (e, g) = element::gradient(&q, &mat, &x).unwrap();
     let gmax = t.grad.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     assert!((e - t.energy).abs() <= 1e-13 * t.energy.abs());
@@ -99,7 +145,7 @@ fn gradient_path_and_generic_material_tangent_agree() {
     }
     // volumetric part: the tangent of the zero-κ material differs by exactly that
     let iso = NeoHooke { g: 1.0, kappa: 0.0 };
-    let ti = element::tangent(&q, &iso, &x).unwrap();
+    let ti = element::tangent(&q, &iso, &x, None).unwrap();
     let hmax = ti
         .hess
         .iter()
@@ -128,7 +174,7 @@ fn inverted_element_is_rejected() {
     // fold corner 2 across the diagonal: one corner Jacobian negative
     let x = [[0.0, 0.0], [0.1, 0.0], [0.02, 0.02], [0.0, 0.1]];
     assert!(element::energy(&q, &mat, &x).is_none());
-    assert!(element::tangent(&q, &mat, &x).is_none());
+    assert!(element::tangent(&q, &mat, &x, None).is_none());
 }
 
 /// Global reduced residual and tangent, including sliding contact nodes (chain rule

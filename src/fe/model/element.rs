@@ -144,7 +144,7 @@ pub fn energy(q: &QuadRef, mat: &NeoHooke, x: &[[f64; 2]; 4]) -> Option<f64> {
 }
 
 /// Gradient `∂v/∂x` of the current element area (shoelace formula), `[x₀, y₀, x₁, …]`.
-fn area_gradient(x: &[[f64; 2]; 4]) -> [f64; 8] {
+pub(crate) fn area_gradient(x: &[[f64; 2]; 4]) -> [f64; 8] {
     let mut dv = [0.0; 8];
     for k in 0..4 {
         let n = (k + 1) % 4;
@@ -212,7 +212,12 @@ pub fn gradient(q: &QuadRef, mat: &NeoHooke, x: &[[f64; 2]; 4]) -> Option<(f64, 
 ///
 /// (`a = J^(−2/3)`); only the blocks `b ≥ a` are computed, the rest by symmetry.
 #[allow(non_snake_case)]
-pub fn tangent(q: &QuadRef, mat: &NeoHooke, x: &[[f64; 2]; 4]) -> Option<ElementTangent> {
+pub fn tangent(
+    q: &QuadRef,
+    mat: &NeoHooke,
+    x: &[[f64; 2]; 4],
+    geometric_pressure: Option<f64>,
+) -> Option<ElementTangent> {
     if !corners_ok(x) {
         return None;
     }
@@ -280,13 +285,14 @@ pub fn tangent(q: &QuadRef, mat: &NeoHooke, x: &[[f64; 2]; 4]) -> Option<Element
             hess[a][b] += kv * dv[a] * dv[b];
         }
     }
+    let pg = geometric_pressure.unwrap_or(kr);
     for k in 0..4 {
         let n = (k + 1) % 4;
         let p = (k + 3) % 4;
-        hess[2 * k][2 * n + 1] += 0.5 * kr;
-        hess[2 * n + 1][2 * k] += 0.5 * kr;
-        hess[2 * k][2 * p + 1] -= 0.5 * kr;
-        hess[2 * p + 1][2 * k] -= 0.5 * kr;
+        hess[2 * k][2 * n + 1] += 0.5 * pg;
+        hess[2 * n + 1][2 * k] += 0.5 * pg;
+        hess[2 * k][2 * p + 1] -= 0.5 * pg;
+        hess[2 * p + 1][2 * k] -= 0.5 * pg;
     }
     Some(ElementTangent { energy, grad, hess })
 }

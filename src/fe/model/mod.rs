@@ -22,6 +22,7 @@
 pub mod element;
 pub mod material;
 pub mod mesh;
+pub mod mixed_pressure;
 
 use crate::fe::contact::friction::{FrictionEval, FrictionLaw, Interface, SlipHistory};
 use crate::fe::contact::indenter::Indenter;
@@ -77,6 +78,29 @@ pub struct State {
     /// unit depth; 0 without friction): what the face has dissipated, and under the penalty law
     /// the work its elastic slips hold.
     pub friction_work: f64,
+    /// Mean pressure of each element (units `G`) that the tangent's geometric volumetric term
+    /// uses, carried through a Newton solve as the mixed (Q1/P0) method's pressure iterate
+    /// ([`Model::carry_pressure`]); `None` at converged states, where each element's own
+    /// `κ (v/V − 1)` is used.
+    pub pressure: Option<Vec<f64>>,
+}
+
+impl State {
+    /// The state with the pressure iterate `pressure` ([`State::pressure`]).
+    pub(crate) fn with_pressure(self, pressure: Option<Vec<f64>>) -> Self {
+        Self { pressure, ..self }
+    }
+
+    /// Whether `other` has this state's forces: the same in everything but the pressure
+    /// iterate, which only the tangent reads.
+    pub(crate) fn same_forces(&self, other: &State) -> bool {
+        self.x == other.x
+            && self.active == other.active
+            && self.d == other.d
+            && self.dx == other.dx
+            && self.slip == other.slip
+            && self.friction_work == other.friction_work
+    }
 }
 
 /// The discrete model.
@@ -148,7 +172,7 @@ impl Model {
                         mesh.nodes[q[2]],
                         mesh.nodes[q[3]],
                     ];
-                    element::tangent(r, &mat, &xr)
+                    element::tangent(r, &mat, &xr, None)
                         .expect("reference element is valid")
                         .hess
                 })
@@ -204,6 +228,7 @@ impl Model {
             dx: 0.0,
             slip,
             friction_work: 0.0,
+            pressure: None,
         }
     }
 

@@ -135,7 +135,7 @@ impl Assembly {
     pub fn assemble(&mut self, model: &Model, st: &State, with_matrix: bool) -> Option<Forces> {
         if !with_matrix {
             if let Some((c, f)) = &self.cache {
-                if c == st {
+                if c.same_forces(st) {
                     return Some(f.clone());
                 }
             }
@@ -254,7 +254,9 @@ impl Assembly {
                     (en, g, [[0.0; 8]; 8])
                 }
                 Kinematics::Finite => {
-                    let t = element::tangent(&model.refs[e], &model.mat, &model.elem_x(st, e))?;
+                    let pressure = st.pressure.as_ref().map(|p| p[e]);
+                    let x = model.elem_x(st, e);
+                    let t = element::tangent(&model.refs[e], &model.mat, &x, pressure)?;
                     (t.energy, t.grad, t.hess)
                 }
                 Kinematics::Linear => {

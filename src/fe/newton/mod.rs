@@ -183,6 +183,9 @@ pub(crate) fn newton(
 ) -> Result<usize, StepFail> {
     let mut last_res = f64::NAN;
     let mut last_step = f64::INFINITY;
+    if !opts.newton.pressure_iterate {
+        st.pressure = None;
+    }
     for it in 0..=opts.newton.max_iterations {
         interrupted(it, last_res)?;
         // convergence check on the forces alone (cached after the line search), the
@@ -197,6 +200,7 @@ pub(crate) fn newton(
         let prev = std::mem::replace(&mut last_res, res);
         let tol = residual_tolerance(model, opts, rtol, f.force_scale);
         if res <= tol || at_round_off_floor(last_step, res, prev, tol) {
+            st.pressure = None;
             return Ok(it);
         }
         if it == opts.newton.max_iterations || !res.is_finite() {
@@ -209,7 +213,11 @@ pub(crate) fn newton(
         let held = solve_newton_step(model, asm, opts, &mut rhs, it, |x| (x[0].clone(), 0.0))?;
         let dq = rhs.pop().expect("one right-hand side");
         last_step = inf_norm(&dq);
-        let stepped = |m: &Model, alpha: f64| holding(m.updated(st, &dq, alpha), held.as_deref());
+        let stepped = |m: &Model, alpha: f64| {
+            let mut trial = holding(m.updated(st, &dq, alpha), held.as_deref());
+            m.carry_pressure(st, &mut trial, alpha);
+            trial
+        };
         let same_pieces = held
             .as_deref()
             .is_none_or(|h| h.iter().all(|&(k, b)| st.slip[k].held == b));
@@ -221,6 +229,7 @@ pub(crate) fn newton(
             // friction law, and those pieces obeyed: converged (a state whose sliding nodes
             // slide against their force is not, however small the step that keeps it)
             *st = stepped(model, 1.0);
+            st.pressure = None;
             return Ok(it + 1);
         }
         if model.kin == Kinematics::Linear && model.is_potential() {
@@ -374,6 +383,9 @@ pub(crate) fn newton_bordered(
     let mut last_res = f64::NAN;
     let mut last_step = f64::INFINITY;
     let mut kscale = 0.0;
+    if !opts.newton.pressure_iterate {
+        st.pressure = None;
+    }
     for it in 0..=opts.newton.max_iterations {
         interrupted(it, last_res)?;
         // convergence check on the forces alone (cached after the line search), the
@@ -390,6 +402,7 @@ pub(crate) fn newton_bordered(
         let tol = residual_tolerance(model, opts, rtol, f.force_scale);
         let forces_converged = res <= tol || at_round_off_floor(last_step, res, prev, tol);
         if forces_converged && c.abs() <= gtol {
+            st.pressure = None;
             return Ok(it);
         }
         if it == opts.newton.max_iterations || !res.is_finite() || !c.is_finite() {
@@ -513,7 +526,9 @@ fn edge_line_search(
         let mut trial = st.clone();
         trial.d += alpha * step.dd;
         m.enforce_constraints(&mut trial);
-        holding(m.updated(&trial, &step.dq, alpha), step.held.as_deref())
+        let mut trial = holding(m.updated(&trial, &step.dq, alpha), step.held.as_deref());
+        m.carry_pressure(st, &mut trial, alpha);
+        trial
     };
     line_search(
         model,

@@ -192,7 +192,10 @@ pub(crate) fn tangent_at(
 /// `q + dd ∂q/∂d + ½ dd² ∂²q/∂d² + dd³ q'''/6` along the load path `tangent` of the converged
 /// state (where it carries the third-order term), then the second-order one without the last
 /// term, then the tangent (Euler) predictor, else linear extrapolation of the last increment, else
-/// a uniform vertical compression. The first that has no inverted element is used.
+/// a uniform vertical compression. The first that has no inverted element is used. The Taylor
+/// predictors also predict the element pressures, from the path's own derivatives, to the order
+/// of their positions' curvature ([`Model::predicted_pressure`]): Newton's first tangent starts
+/// from them.
 pub(crate) fn predictor(
     model: &Model,
     cur: &State,
@@ -204,11 +207,12 @@ pub(crate) fn predictor(
     let mut tries: Vec<State> = Vec::new();
     if let Some(z) = tangent {
         let (euler, second) = taylor(model, cur, dd, z);
+        let pressure = model.predicted_pressure(cur, z, z.curvature(), dd);
         if let (Some(second), Some(term)) = (&second, &z.third_order) {
-            tries.push(moved_by(second, term, dd * dd * dd));
+            tries.push(moved_by(second, term, dd * dd * dd).with_pressure(pressure.clone()));
         }
-        tries.extend(second);
-        tries.push(euler);
+        tries.extend(second.map(|second| second.with_pressure(pressure)));
+        tries.push(euler.with_pressure(model.predicted_pressure(cur, z, None, dd)));
     }
     if let Some(p) = prev {
         let ddp = cur.d - p.d;
