@@ -1,7 +1,7 @@
 //! Newton iterations per load point of frictionless curves, every iteration counted
 //! (`CurvePoint::newton_iterations`): issue 42's goal 1 asks for at most 3.0 per point at every
 //! mesh from 48 to 192. The counts are deterministic, so they are asserted near what is measured
-//! (docs/performance.md, "the third-order term", where the other meshes and aspect ratios are).
+//! (docs/performance.md, "the pressure iterate", where the other meshes and aspect ratios are).
 use std::ops::ControlFlow;
 use wavy::fe::*;
 

@@ -1,7 +1,9 @@
 //! Newton's method at a fixed active set: the plain step, and the bordered step of an edge
 //! event in which the slab displacement is an unknown too.
 //!
-//! Both use the consistent tangent of the reduced problem ([`crate::fe::newton::assembly`]), solved by
+//! Both use the consistent tangent of the reduced problem ([`crate::fe::newton::assembly`]), its
+//! geometric volumetric term on the state's pressure iterate where it has one (the mixed method's,
+//! [`crate::fe::model::mixed_pressure`]; each step carries it, a converged state drops it), solved by
 //! [`crate::fe::newton::friction_step`] (the factorisations are described in [`crate::fe::linsys`]), and one
 //! backtracking [`line_search`]: on the energy `Π` (Armijo) or, if the Newton direction is
 //! not a descent direction or the problem has friction, on a residual merit. Inverted trial
