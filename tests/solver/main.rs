@@ -4,6 +4,7 @@
 //! One test binary per concern, each module one file as it was before the grouping (fewer binaries
 //! link faster, and the tests of a binary share its threads).
 
+mod curve_pairs;
 mod energy_audit;
 mod fe_convergence;
 mod fe_equilibrium;

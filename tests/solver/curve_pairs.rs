@@ -1,0 +1,18 @@
+//! Two curves of one problem solved two ways, compared point by point.
+use wavy::fe::Curve;
+
+/// The largest relative difference of a/λ and p̄/E* between the points of `a` and `b`, which
+/// must have the same points (asserted).
+pub(crate) fn largest_relative_difference(a: &Curve, b: &Curve) -> f64 {
+    assert_eq!(a.points.len(), b.points.len(), "the two curves' points");
+    let mut largest = 0.0_f64;
+    for (p, q) in a.points.iter().zip(&b.points) {
+        for (x, y) in [
+            (p.a_over_lambda, q.a_over_lambda),
+            (p.p_over_estar, q.p_over_estar),
+        ] {
+            largest = largest.max((x / y - 1.0).abs());
+        }
+    }
+    largest
+}
