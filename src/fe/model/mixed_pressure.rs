@@ -17,6 +17,34 @@ use crate::fe::model::element::{area_gradient, shoelace};
 use crate::fe::model::{Model, Role, State};
 use crate::fe::Kinematics;
 
+impl State {
+    /// The state with the pressure iterate `pressure` ([`State::pressure`]).
+    pub(crate) fn with_pressure(self, pressure: Option<Vec<f64>>) -> Self {
+        Self { pressure, ..self }
+    }
+
+    /// Whether `other` has this state's forces: the same in everything but the pressure
+    /// iterate, which only the tangent reads.
+    pub(crate) fn same_forces(&self, other: &State) -> bool {
+        // every field named, so that a field added to the state is decided here
+        let State {
+            x,
+            active,
+            d,
+            dx,
+            slip,
+            friction_work,
+            pressure: _,
+        } = self;
+        *x == other.x
+            && *active == other.active
+            && *d == other.d
+            && *dx == other.dx
+            && *slip == other.slip
+            && *friction_work == other.friction_work
+    }
+}
+
 impl Model {
     /// `κ (v/V − 1)` of element `e` at `st` and the gradient `∂v/∂x` of its area.
     fn condensed_pressure(&self, st: &State, e: usize) -> (f64, [f64; 8]) {
@@ -54,8 +82,9 @@ impl Model {
     }
 
     /// The element pressures at the slab displacement `cur.d + dd` along the load path of the
-    /// converged state `cur`, `p + p′ dd + ½ p″ dd²`, from the path's slot-wise derivatives
-    /// `rate = ∂q/∂d` and, where known, `curvature = ∂²q/∂d²`: `p′ = κ ∇v·ẋ / V` and
+    /// converged state `cur`, from the path's slot-wise derivatives `rate = ∂q/∂d` and, where
+    /// known, `curvature = ∂²q/∂d²`: to first order `p + p′ dd` and, with the curvature, to
+    /// second order `p + p′ dd + ½ p″ dd²`, where `p′ = κ ∇v·ẋ / V` and
     /// `p″ = κ (ẋ·∇²v ẋ + ∇v·ẍ) / V`, `ẋ`, `ẍ` the nodes' velocities and accelerations along
     /// the path. `None` under linear kinematics, whose tangent has no geometric term.
     pub(crate) fn predicted_pressure(
@@ -64,68 +93,91 @@ impl Model {
         rate: &[f64],
         curvature: Option<&[f64]>,
         dd: f64,
-    ) -> Option<Vec<f64>> {
+    ) -> Option<PredictedPressure> {
         if self.kin != Kinematics::Finite {
             return None;
         }
-        let velocity = self.node_motion(cur, rate, None);
-        let acceleration = curvature.map(|w| self.node_motion(cur, w, Some(&velocity)));
-        let pressure = (0..self.mesh.quads.len())
-            .map(|e| {
-                let (p, dv) = self.condensed_pressure(cur, e);
-                let q = self.mesh.quads[e];
-                let along = |m: &[[f64; 2]]| -> f64 {
-                    (0..4)
-                        .map(|a| dv[2 * a] * m[q[a]][0] + dv[2 * a + 1] * m[q[a]][1])
-                        .sum()
-                };
-                let scale = self.mat.kappa / self.refs[e].area;
-                let first = scale * along(&velocity);
-                let second = acceleration.as_ref().map_or(0.0, |acc| {
-                    let ve = [
-                        velocity[q[0]],
-                        velocity[q[1]],
-                        velocity[q[2]],
-                        velocity[q[3]],
-                    ];
-                    scale * (2.0 * shoelace(&ve) + along(acc))
-                });
-                p + first * dd + 0.5 * second * dd * dd
-            })
-            .collect();
-        Some(pressure)
+        let velocity = self.node_velocities(cur, rate);
+        let acceleration = curvature.map(|w| self.node_accelerations(cur, w, &velocity));
+        let (mut first_order, mut second_order) = (Vec::new(), Vec::new());
+        for e in 0..self.mesh.quads.len() {
+            let (p, dv) = self.condensed_pressure(cur, e);
+            let q = self.mesh.quads[e];
+            let along = |m: &[[f64; 2]]| -> f64 {
+                (0..4)
+                    .map(|a| dv[2 * a] * m[q[a]][0] + dv[2 * a + 1] * m[q[a]][1])
+                    .sum()
+            };
+            let scale = self.mat.kappa / self.refs[e].area;
+            let first = p + scale * along(&velocity) * dd;
+            first_order.push(first);
+            if let Some(acc) = &acceleration {
+                let ve = q.map(|n| velocity[n]);
+                let second = scale * (2.0 * shoelace(&ve) + along(acc));
+                second_order.push(first + 0.5 * second * dd * dd);
+            }
+        }
+        Some(PredictedPressure {
+            first_order,
+            second_order: acceleration.map(|_| second_order),
+        })
     }
 
-    /// The nodes' motion along the load path from a slot vector `z`: with `velocity` `None`, the
-    /// velocities `ẋ` from `z = ∂q/∂d` (the top moving down with the slab, an active face node
-    /// along the indenter); given the velocities, the accelerations `ẍ` from `z = ∂²q/∂d²` (an
-    /// active face node also turning with the indenter, `ÿ = y_s′ ẍ + y_s″ ẋ²`).
-    fn node_motion(&self, st: &State, z: &[f64], velocity: Option<&[[f64; 2]]>) -> Vec<[f64; 2]> {
+    /// The slot vector `z` as node motions `Σ_s c_s z_s` along each node's slots.
+    fn slot_motion(&self, st: &State, z: &[f64]) -> Vec<[f64; 2]> {
         let map = self.slot_map(st);
-        let mut bottom_slot = vec![None; self.mesh.nodes.len()];
-        for (k, &n) in self.mesh.bottom.iter().enumerate() {
-            bottom_slot[n] = Some(k);
-        }
         (0..self.mesh.nodes.len())
             .map(|n| {
                 let mut m = [0.0; 2];
-                for s in 0..2 {
-                    if let Some(c) = map[n][s] {
+                for (s, slot) in map[n].iter().enumerate() {
+                    if let Some(c) = slot {
                         m[0] += c[0] * z[2 * n + s];
                         m[1] += c[1] * z[2 * n + s];
                     }
-                }
-                if self.role[n] == Role::Top && velocity.is_none() {
-                    m[1] = -1.0;
-                }
-                let active = bottom_slot[n].is_some_and(|k| st.active[k]);
-                if let (Some(v), true, Role::Bottom) = (velocity, active, self.role[n]) {
-                    m[1] += self.indenter.curvature(st.x[n][0]) * v[n][0] * v[n][0];
                 }
                 m
             })
             .collect()
     }
+
+    /// The nodes' velocities `ẋ` along the load path from `rate = ∂q/∂d`: the top moving down
+    /// with the slab, an active face node along the indenter.
+    fn node_velocities(&self, st: &State, rate: &[f64]) -> Vec<[f64; 2]> {
+        let mut velocity = self.slot_motion(st, rate);
+        for (n, v) in velocity.iter_mut().enumerate() {
+            if self.role[n] == Role::Top {
+                v[1] = -1.0;
+            }
+        }
+        velocity
+    }
+
+    /// The nodes' accelerations `ẍ` along the load path from `curvature = ∂²q/∂d²` and the
+    /// velocities: an active face node also turning with the indenter, `ÿ = y_s′ ẍ + y_s″ ẋ²`.
+    fn node_accelerations(
+        &self,
+        st: &State,
+        curvature: &[f64],
+        velocity: &[[f64; 2]],
+    ) -> Vec<[f64; 2]> {
+        let mut acceleration = self.slot_motion(st, curvature);
+        for (k, &n) in self.mesh.bottom.iter().enumerate() {
+            if st.active[k] && self.role[n] == Role::Bottom {
+                let vx = velocity[n][0];
+                acceleration[n][1] += self.indenter.curvature(st.x[n][0]) * vx * vx;
+            }
+        }
+        acceleration
+    }
+}
+
+/// The element pressures a predictor predicts ([`Model::predicted_pressure`]): to first order,
+/// and to second order where the path's curvature is known.
+pub(crate) struct PredictedPressure {
+    /// `p + p′ dd`, per element (units `G`).
+    pub first_order: Vec<f64>,
+    /// `p + p′ dd + ½ p″ dd²`, per element (units `G`).
+    pub second_order: Option<Vec<f64>>,
 }
 
 #[cfg(test)]

@@ -85,24 +85,6 @@ pub struct State {
     pub pressure: Option<Vec<f64>>,
 }
 
-impl State {
-    /// The state with the pressure iterate `pressure` ([`State::pressure`]).
-    pub(crate) fn with_pressure(self, pressure: Option<Vec<f64>>) -> Self {
-        Self { pressure, ..self }
-    }
-
-    /// Whether `other` has this state's forces: the same in everything but the pressure
-    /// iterate, which only the tangent reads.
-    pub(crate) fn same_forces(&self, other: &State) -> bool {
-        self.x == other.x
-            && self.active == other.active
-            && self.d == other.d
-            && self.dx == other.dx
-            && self.slip == other.slip
-            && self.friction_work == other.friction_work
-    }
-}
-
 /// The discrete model.
 #[derive(Clone, Debug)]
 pub struct Model {

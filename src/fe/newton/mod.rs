@@ -91,13 +91,21 @@ fn convergence_norm(f: &Forces) -> f64 {
     inf_norm(&f.resid).max(f.friction_complementarity)
 }
 
-/// `st` with the exact-stick pieces of the law that its Newton step was solved with
-/// ([`solve_newton_step`]; none under the penalty law).
-fn holding(mut st: State, held: Option<&[(usize, Branch)]>) -> State {
+/// The trial `trial` of a Newton step from `from` taken at the fraction `alpha`: with the
+/// exact-stick pieces of the law that the step was solved with ([`solve_newton_step`]; none under
+/// the penalty law) and the pressure iterate carried through the step ([`Model::carry_pressure`]).
+fn stepped(
+    model: &Model,
+    from: &State,
+    mut trial: State,
+    alpha: f64,
+    held: Option<&[(usize, Branch)]>,
+) -> State {
     for &(k, branch) in held.unwrap_or_default() {
-        st.slip[k].held = branch;
+        trial.slip[k].held = branch;
     }
-    st
+    model.carry_pressure(from, &mut trial, alpha);
+    trial
 }
 
 /// What a line-search trial must decrease.
@@ -215,10 +223,8 @@ pub(crate) fn newton(
         let held = solve_newton_step(model, asm, opts, &mut rhs, it, |x| (x[0].clone(), 0.0))?;
         let dq = rhs.pop().expect("one right-hand side");
         last_step = inf_norm(&dq);
-        let stepped = |m: &Model, alpha: f64| {
-            let mut trial = holding(m.updated(st, &dq, alpha), held.as_deref());
-            m.carry_pressure(st, &mut trial, alpha);
-            trial
+        let trial_at = |m: &Model, alpha: f64| {
+            stepped(m, st, m.updated(st, &dq, alpha), alpha, held.as_deref())
         };
         let same_pieces = held
             .as_deref()
@@ -230,13 +236,13 @@ pub(crate) fn newton(
             // correction below the round-off of the positions, on the same pieces of the
             // friction law, and those pieces obeyed: converged (a state whose sliding nodes
             // slide against their force is not, however small the step that keeps it)
-            *st = stepped(model, 1.0);
+            *st = trial_at(model, 1.0);
             st.pressure = None;
             return Ok(it + 1);
         }
         if model.kin == Kinematics::Linear && model.is_potential() {
             // quadratic energy: the Newton step is exact
-            *st = stepped(model, 1.0);
+            *st = trial_at(model, 1.0);
             continue;
         }
         let slope: f64 = f.resid.iter().zip(&dq).map(|(r, d)| r * d).sum();
@@ -252,7 +258,7 @@ pub(crate) fn newton(
                 merit: &residual_norm,
             }
         };
-        match line_search(model, asm, opts.newton.max_line_search, stepped, decrease) {
+        match line_search(model, asm, opts.newton.max_line_search, trial_at, decrease) {
             Some(t) => *st = t,
             None => {
                 let reason = "line search found no acceptable step";
@@ -528,9 +534,13 @@ fn edge_line_search(
         let mut trial = st.clone();
         trial.d += alpha * step.dd;
         m.enforce_constraints(&mut trial);
-        let mut trial = holding(m.updated(&trial, &step.dq, alpha), step.held.as_deref());
-        m.carry_pressure(st, &mut trial, alpha);
-        trial
+        stepped(
+            m,
+            st,
+            m.updated(&trial, &step.dq, alpha),
+            alpha,
+            step.held.as_deref(),
+        )
     };
     line_search(
         model,

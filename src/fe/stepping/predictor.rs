@@ -207,12 +207,16 @@ pub(crate) fn predictor(
     let mut tries: Vec<State> = Vec::new();
     if let Some(z) = tangent {
         let (euler, second) = taylor(model, cur, dd, z);
-        let pressure = model.predicted_pressure(cur, z, z.curvature(), dd);
+        let (first_order, second_order) = match model.predicted_pressure(cur, z, z.curvature(), dd)
+        {
+            Some(p) => (Some(p.first_order), p.second_order),
+            None => (None, None),
+        };
         if let (Some(second), Some(term)) = (&second, &z.third_order) {
-            tries.push(moved_by(second, term, dd * dd * dd).with_pressure(pressure.clone()));
+            tries.push(moved_by(second, term, dd * dd * dd).with_pressure(second_order.clone()));
         }
-        tries.extend(second.map(|second| second.with_pressure(pressure)));
-        tries.push(euler.with_pressure(model.predicted_pressure(cur, z, None, dd)));
+        tries.extend(second.map(|second| second.with_pressure(second_order)));
+        tries.push(euler.with_pressure(first_order));
     }
     if let Some(p) = prev {
         let ddp = cur.d - p.d;
