@@ -85,10 +85,12 @@ impl Default for ContactOptions {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct StepOptions {
     /// Target advance of `a/λ` per load step: the next edge node is the first one at
-    /// least this far beyond the current edge. The default 0 steps node by node, which
-    /// is the cheapest: skipping nodes makes the skipped ones enter contact in the
+    /// least this far beyond the current edge. The default 0 steps node by node. Without
+    /// friction a step that skips nodes is predicted through their closings one after another
+    /// (a load tangent at each, no Newton iteration), which makes the steps of 0.01 cheaper
+    /// than node by node on fine meshes; with friction the skipped nodes enter contact in the
     /// middle of a solve, which costs many more Newton iterations per step
-    /// (docs/performance.md).
+    /// (docs/performance.md, "steps over several nodes").
     pub da_target: f64,
     /// First slab-displacement increment in units of the amplitude `Δ`.
     pub first_step_over_amplitude: f64,

@@ -9,13 +9,15 @@
 //! solves, in which a failed trial is retried from the last open-gap state with half the
 //! increment ([`EventSearch::find`]). The other nodes follow the active-set rules. Where
 //! the contact edge lies at an event is the edge rule's ([`crate::fe::contact::edge_rule`]).
+//! Frictionless, an event beyond free nodes is predicted through their closings
+//! ([`predicted_through_closings`]).
 
 use crate::fe::error::SolveError;
 use crate::fe::error::StepFail;
 use crate::fe::model::{Model, State};
 use crate::fe::newton::active_set::{equilibrate, equilibrate_event, Hold};
 use crate::fe::newton::assembly::Assembly;
-use crate::fe::stepping::predictor::{predictor, tangent_at, LoadTangent};
+use crate::fe::stepping::predictor::{load_tangent, predictor, tangent_at, LoadTangent};
 use crate::fe::stepping::step_control::{RegulaFalsi, StepCuts, Trial, STEP_CUT_FACTOR};
 use crate::fe::SolveOptions;
 
@@ -270,13 +272,40 @@ impl EventSearch<'_> {
         tangent: Option<&LoadTangent>,
         increment: f64,
     ) -> Result<(State, usize), usize> {
-        let mut st = predictor(model, base, base_prev, increment, tangent).ok_or(0usize)?;
+        let mut st = self
+            .predicted(model, asm, base, base_prev, tangent, increment)
+            .ok_or(0usize)?;
         let it = equilibrate_event(model, asm, &mut st, self.opts, self.node, self.gap_tol)
             .map_err(|f| f.iterations())?;
         let g = self.gap(model, &st);
         match g.abs() <= self.gap_tol && st.d > self.from.d {
             true => Ok((st, it)),
             false => Err(it),
+        }
+    }
+
+    /// The predicted state of the event at `base.d + increment`: frictionless, when the target
+    /// lies beyond free nodes ([`StepOptions::da_target`]), followed through their closings
+    /// ([`predicted_through_closings`]); else [`predictor`]'s.
+    fn predicted(
+        &self,
+        model: &Model,
+        asm: &mut Assembly,
+        base: &State,
+        base_prev: Option<&State>,
+        tangent: Option<&LoadTangent>,
+        increment: f64,
+    ) -> Option<State> {
+        match tangent {
+            Some(z) if model.is_potential() && self.opts.steps.da_target > 0.0 => {
+                let path = Closings {
+                    base,
+                    tangent: z,
+                    target: self.node,
+                };
+                predicted_through_closings(model, asm, &path, base.d + increment)
+            }
+            _ => predictor(model, base, base_prev, increment, tangent),
         }
     }
 
@@ -420,6 +449,49 @@ fn extrapolated<S>(
     };
     let grow = max_step_growth * (below.x - from_d).max(last_increment);
     below.x + span.clamp(MIN_SPAN_OVER_GROWTH * grow, grow)
+}
+
+/// A step whose target lies beyond free nodes: where it starts, its load path there, and the
+/// target node.
+struct Closings<'a> {
+    base: &'a State,
+    tangent: &'a LoadTangent,
+    target: usize,
+}
+
+/// The predicted state at the slab displacement `end`, followed through the closings of the free
+/// nodes the step passes, one after another: Taylor ([`predictor`]) to where the next of them
+/// closes along the current path ([`predicted_closing`]), that node activated, and the load path
+/// taken again there ([`load_tangent`], one factorisation, no Newton iteration), until no free node
+/// before the target closes before `end`. The path kinks at each closing; a single Taylor step
+/// across them misses the kinks by a fraction of an element, which a nearly incompressible layer
+/// turns into pressures tens of G off and Newton into many damped iterations
+/// (docs/performance.md, "steps over several nodes"). The third-order term of the path is left
+/// out: measured over a step whose contact set changed, it is not the path's. `None` where a
+/// prediction is inverted or a tangent cannot be solved.
+fn predicted_through_closings(
+    model: &Model,
+    asm: &mut Assembly,
+    path: &Closings<'_>,
+    end: f64,
+) -> Option<State> {
+    let mut cur = path.base.clone();
+    let mut tangent = path.tangent.clone().with_third_order(None);
+    loop {
+        let gaps = model.gaps(&cur);
+        let next = (last_active(&cur) + 1..path.target)
+            .filter(|&j| !cur.active[j])
+            .filter_map(|j| predicted_closing(model, &cur, j, gaps[j], &tangent).map(|dd| (j, dd)))
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        let Some((j, dd)) = next.filter(|&(_, dd)| cur.d + dd < end) else {
+            return predictor(model, &cur, None, end - cur.d, Some(&tangent));
+        };
+        let mut closed = predictor(model, &cur, None, dd, Some(&tangent))?;
+        model.activate(&mut closed, j);
+        model.enforce_constraints(&mut closed);
+        tangent = load_tangent(model, asm, &closed)?;
+        cur = closed;
+    }
 }
 
 #[cfg(test)]

@@ -346,7 +346,7 @@ impl Branch<'_> {
         let found = self.find_event(asm, path, k, tangent, step)?;
         let mut settled = self.settle_event(asm, path, found, step)?;
         let third_order = (step_path.as_ref())
-            .filter(|_| settled.released.is_none())
+            .filter(|_| settled.released.is_none() && self.opts.steps.da_target == 0.0)
             .and_then(|z| third_order_term(self.model, &path.cur, z, &settled.state));
         let measured = self.measure_event(asm, &mut settled);
         let overshot = self
