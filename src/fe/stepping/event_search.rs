@@ -169,6 +169,29 @@ pub(crate) fn predicted_closing(
     })
 }
 
+/// Where one try of an event starts: a converged state, the one before it (for the
+/// extrapolating predictor), its load path, and the trial increment of `d` (units of λ).
+#[derive(Clone, Copy)]
+struct TryStart<'a> {
+    base: &'a State,
+    base_prev: Option<&'a State>,
+    tangent: Option<&'a LoadTangent>,
+    increment: f64,
+}
+
+impl TryStart<'_> {
+    /// The predicted state at `base.d + increment` ([`predictor`]).
+    fn predicted(&self, model: &Model) -> Option<State> {
+        predictor(
+            model,
+            self.base,
+            self.base_prev,
+            self.increment,
+            self.tangent,
+        )
+    }
+}
+
 /// The search for one edge event, from the converged state of the last one.
 pub(crate) struct EventSearch<'a> {
     /// Numerical options.
@@ -204,14 +227,13 @@ impl EventSearch<'_> {
         let bordered = if !self.opts.steps.bordered_edge_solve {
             Err(0)
         } else if model.is_potential() {
-            self.bordered(
-                model,
-                asm,
-                self.from,
-                self.before,
-                self.tangent.as_ref(),
-                self.first_increment,
-            )
+            let start = TryStart {
+                base: self.from,
+                base_prev: self.before,
+                tangent: self.tangent.as_ref(),
+                increment: self.first_increment,
+            };
+            self.bordered(model, asm, start)
         } else {
             self.bordered_in_substeps(model, asm)
         };
@@ -243,12 +265,9 @@ impl EventSearch<'_> {
         &self,
         model: &Model,
         asm: &mut Assembly,
-        base: &State,
-        base_prev: Option<&State>,
-        tangent: Option<&LoadTangent>,
-        increment: f64,
+        start: TryStart<'_>,
     ) -> Result<(State, usize), StepFail> {
-        match predictor(model, base, base_prev, increment, tangent) {
+        match start.predicted(model) {
             Some(mut st) => {
                 equilibrate(model, asm, &mut st, self.opts, Hold::free(Some(self.node)))
                     .map(|it| (st, it))
@@ -267,14 +286,9 @@ impl EventSearch<'_> {
         &self,
         model: &Model,
         asm: &mut Assembly,
-        base: &State,
-        base_prev: Option<&State>,
-        tangent: Option<&LoadTangent>,
-        increment: f64,
+        start: TryStart<'_>,
     ) -> Result<(State, usize), usize> {
-        let mut st = self
-            .predicted(model, asm, base, base_prev, tangent, increment)
-            .ok_or(0usize)?;
+        let mut st = self.predicted_event(model, asm, start).ok_or(0usize)?;
         let it = equilibrate_event(model, asm, &mut st, self.opts, self.node, self.gap_tol)
             .map_err(|f| f.iterations())?;
         let g = self.gap(model, &st);
@@ -287,25 +301,22 @@ impl EventSearch<'_> {
     /// The predicted state of the event at `base.d + increment`: frictionless, when the target
     /// lies beyond free nodes ([`StepOptions::da_target`]), followed through their closings
     /// ([`predicted_through_closings`]); else [`predictor`]'s.
-    fn predicted(
+    fn predicted_event(
         &self,
         model: &Model,
         asm: &mut Assembly,
-        base: &State,
-        base_prev: Option<&State>,
-        tangent: Option<&LoadTangent>,
-        increment: f64,
+        start: TryStart<'_>,
     ) -> Option<State> {
-        match tangent {
+        match start.tangent {
             Some(z) if model.is_potential() && self.opts.steps.da_target > 0.0 => {
                 let path = Closings {
-                    base,
+                    base: start.base,
                     tangent: z,
                     target: self.node,
                 };
-                predicted_through_closings(model, asm, &path, base.d + increment)
+                predicted_through_closings(model, asm, &path, start.base.d + start.increment)
             }
-            _ => predictor(model, base, base_prev, increment, tangent),
+            _ => start.predicted(model),
         }
     }
 
@@ -324,26 +335,18 @@ impl EventSearch<'_> {
         let mut increment = self.first_increment;
         let mut spent = 0;
         for _ in 0..=self.opts.steps.max_step_cuts {
-            match self.bordered(
-                model,
-                asm,
-                &base,
-                base_prev.as_ref(),
-                tangent.as_ref(),
+            let start = TryStart {
+                base: &base,
+                base_prev: base_prev.as_ref(),
+                tangent: tangent.as_ref(),
                 increment,
-            ) {
+            };
+            match self.bordered(model, asm, start) {
                 Ok((st, it)) => return Ok((st, it + spent)),
                 Err(it) => spent += it,
             }
             increment *= STEP_CUT_FACTOR;
-            let sub = self.held_free(
-                model,
-                asm,
-                &base,
-                base_prev.as_ref(),
-                tangent.as_ref(),
-                increment,
-            );
+            let sub = self.held_free(model, asm, TryStart { increment, ..start });
             match sub {
                 Ok((mut st, it)) => {
                     spent += it;
@@ -395,8 +398,13 @@ impl EventSearch<'_> {
             let base_d = base.d;
             let tangent = tangent_at(model, asm, opts, base);
             let base_prev = search.below_prev.as_ref().map(|p| &p.at);
-            let increment = trial - base_d;
-            match self.held_free(model, asm, base, base_prev, tangent.as_ref(), increment) {
+            let start = TryStart {
+                base,
+                base_prev,
+                tangent: tangent.as_ref(),
+                increment: trial - base_d,
+            };
+            match self.held_free(model, asm, start) {
                 Err(f) => {
                     iters += f.iterations();
                     match cuts.cut(base_d, trial) {
