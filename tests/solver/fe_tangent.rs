@@ -6,6 +6,11 @@ use wavy::fe::model::material::NeoHooke;
 use wavy::fe::newton::assembly;
 use wavy::fe::*;
 
+/// The largest magnitude among `values`.
+fn largest_entry<'a>(values: impl IntoIterator<Item = &'a f64>) -> f64 {
+    values.into_iter().fold(0.0_f64, |m, v| m.max(v.abs()))
+}
+
 fn distorted() -> ([[f64; 2]; 4], [[f64; 2]; 4]) {
     let xr = [[0.0, 0.0], [0.1, 0.0], [0.12, 0.09], [-0.01, 0.1]];
     let x = [[0.003, -0.01], [0.13, 0.004], [0.125, 0.085], [0.01, 0.11]];
@@ -20,8 +25,8 @@ fn element_gradient_and_hessian_match_central_differences() {
         let q = QuadRef::new(&xr);
         let t = element::tangent(&q, &mat, &x, None).expect("valid element");
         let h = 1e-6;
-        let gmax = t.grad.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        let hmax = t.hess.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let gmax = largest_entry(&t.grad);
+        let hmax = largest_entry(t.hess.iter().flatten());
         for a in 0..8 {
             let mut xp = x;
             let mut xm = x;
@@ -67,11 +72,7 @@ fn a_geometric_pressure_changes_the_volumetric_geometric_term_alone() {
     let same = element::tangent(&q, &mat, &x, Some(own)).unwrap();
     let shift = 2.5;
     let other = element::tangent(&q, &mat, &x, Some(own + shift)).unwrap();
-    let hmax = condensed
-        .hess
-        .iter()
-        .flatten()
-        .fold(0.0_f64, |m, v| m.max(v.abs()));
+    let hmax = largest_entry(condensed.hess.iter().flatten());
     for r in 0..8 {
         for c in 0..8 {
             let (k, l) = (r / 2, c / 2);
@@ -110,7 +111,7 @@ fn gradient_path_and_generic_material_tangent_agree() {
     let q = QuadRef::new(&xr);
     let t = element::tangent(&q, &mat, &x, None).unwrap();
     let (e, g) = element::gradient(&q, &mat, &x).unwrap();
-    let gmax = t.grad.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let gmax = largest_entry(&t.grad);
     assert!((e - t.energy).abs() <= 1e-13 * t.energy.abs());
     for a in 0..8 {
         assert!((g[a] - t.grad[a]).abs() <= 1e-13 * gmax, "grad[{a}]");
@@ -146,11 +147,7 @@ fn gradient_path_and_generic_material_tangent_agree() {
     // volumetric part: the tangent of the zero-κ material differs by exactly that
     let iso = NeoHooke { g: 1.0, kappa: 0.0 };
     let ti = element::tangent(&q, &iso, &x, None).unwrap();
-    let hmax = ti
-        .hess
-        .iter()
-        .flatten()
-        .fold(0.0_f64, |m, v| m.max(v.abs()));
+    let hmax = largest_entry(ti.hess.iter().flatten());
     for a in 0..8 {
         for b in 0..8 {
             assert!(

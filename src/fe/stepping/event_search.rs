@@ -10,7 +10,7 @@
 //! increment ([`EventSearch::find`]). The other nodes follow the active-set rules. Where
 //! the contact edge lies at an event is the edge rule's ([`crate::fe::contact::edge_rule`]).
 //! Frictionless, an event beyond free nodes is predicted through their closings
-//! ([`predicted_through_closings`]).
+//! ([`EventSearch::predicted_through_closings`]).
 
 use crate::fe::error::SolveError;
 use crate::fe::error::StepFail;
@@ -300,7 +300,7 @@ impl EventSearch<'_> {
 
     /// The predicted state of the event at `base.d + increment`: frictionless, when the target
     /// lies beyond free nodes ([`StepOptions::da_target`]), followed through their closings
-    /// ([`predicted_through_closings`]); else [`predictor`]'s.
+    /// ([`Self::predicted_through_closings`]); else [`predictor`]'s.
     fn predicted_event(
         &self,
         model: &Model,
@@ -309,14 +309,48 @@ impl EventSearch<'_> {
     ) -> Option<State> {
         match start.tangent {
             Some(z) if model.is_potential() && self.opts.steps.da_target > 0.0 => {
-                let path = Closings {
-                    base: start.base,
-                    tangent: z,
-                    target: self.node,
-                };
-                predicted_through_closings(model, asm, &path, start.base.d + start.increment)
+                self.predicted_through_closings(model, asm, start, z)
             }
             _ => start.predicted(model),
+        }
+    }
+
+    /// The predicted state at `base.d + increment` of `start`, followed through the closings of
+    /// the free nodes before the target, one after another: Taylor ([`predictor`]) along the load
+    /// path `tangent` to where the next of them closes ([`predicted_closing`]), that node activated,
+    /// and the load path taken again there ([`load_tangent`], one factorisation, no Newton
+    /// iteration), until no free node before the target closes within the increment. The path
+    /// kinks at each closing; a single Taylor step across them misses the kinks by a fraction of
+    /// an element, which a nearly incompressible layer turns into pressures tens of G off and
+    /// Newton into many damped iterations (docs/performance.md, "steps over several nodes"). The
+    /// third-order term of the path is left out: measured over a step whose contact set changed,
+    /// it is not the path's. `None` where a prediction is inverted or a tangent cannot be solved.
+    fn predicted_through_closings(
+        &self,
+        model: &Model,
+        asm: &mut Assembly,
+        start: TryStart<'_>,
+        tangent: &LoadTangent,
+    ) -> Option<State> {
+        let end = start.base.d + start.increment;
+        let mut cur = start.base.clone();
+        let mut tangent = tangent.clone().with_third_order(None);
+        loop {
+            let gaps = model.gaps(&cur);
+            let next = (last_active(&cur) + 1..self.node)
+                .filter(|&j| !cur.active[j])
+                .filter_map(|j| {
+                    predicted_closing(model, &cur, j, gaps[j], &tangent).map(|dd| (j, dd))
+                })
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            let Some((j, dd)) = next.filter(|&(_, dd)| cur.d + dd < end) else {
+                return predictor(model, &cur, None, end - cur.d, Some(&tangent));
+            };
+            let mut closed = predictor(model, &cur, None, dd, Some(&tangent))?;
+            model.activate(&mut closed, j);
+            model.enforce_constraints(&mut closed);
+            tangent = load_tangent(model, asm, &closed)?;
+            cur = closed;
         }
     }
 
@@ -457,49 +491,6 @@ fn extrapolated<S>(
     };
     let grow = max_step_growth * (below.x - from_d).max(last_increment);
     below.x + span.clamp(MIN_SPAN_OVER_GROWTH * grow, grow)
-}
-
-/// A step whose target lies beyond free nodes: where it starts, its load path there, and the
-/// target node.
-struct Closings<'a> {
-    base: &'a State,
-    tangent: &'a LoadTangent,
-    target: usize,
-}
-
-/// The predicted state at the slab displacement `end`, followed through the closings of the free
-/// nodes the step passes, one after another: Taylor ([`predictor`]) to where the next of them
-/// closes along the current path ([`predicted_closing`]), that node activated, and the load path
-/// taken again there ([`load_tangent`], one factorisation, no Newton iteration), until no free node
-/// before the target closes before `end`. The path kinks at each closing; a single Taylor step
-/// across them misses the kinks by a fraction of an element, which a nearly incompressible layer
-/// turns into pressures tens of G off and Newton into many damped iterations
-/// (docs/performance.md, "steps over several nodes"). The third-order term of the path is left
-/// out: measured over a step whose contact set changed, it is not the path's. `None` where a
-/// prediction is inverted or a tangent cannot be solved.
-fn predicted_through_closings(
-    model: &Model,
-    asm: &mut Assembly,
-    path: &Closings<'_>,
-    end: f64,
-) -> Option<State> {
-    let mut cur = path.base.clone();
-    let mut tangent = path.tangent.clone().with_third_order(None);
-    loop {
-        let gaps = model.gaps(&cur);
-        let next = (last_active(&cur) + 1..path.target)
-            .filter(|&j| !cur.active[j])
-            .filter_map(|j| predicted_closing(model, &cur, j, gaps[j], &tangent).map(|dd| (j, dd)))
-            .min_by(|a, b| a.1.total_cmp(&b.1));
-        let Some((j, dd)) = next.filter(|&(_, dd)| cur.d + dd < end) else {
-            return predictor(model, &cur, None, end - cur.d, Some(&tangent));
-        };
-        let mut closed = predictor(model, &cur, None, dd, Some(&tangent))?;
-        model.activate(&mut closed, j);
-        model.enforce_constraints(&mut closed);
-        tangent = load_tangent(model, asm, &closed)?;
-        cur = closed;
-    }
 }
 
 #[cfg(test)]
