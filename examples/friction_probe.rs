@@ -6,7 +6,9 @@
 //! 0: the plain Newton step), EDGE_LS (halvings of the bordered solve's line search, 8), PEAK (the
 //! face grading's peak ratio, 4), COARSEN (its `coarsen_at_aspect`, 0), KIN (finite or linear),
 //! DA (`StepOptions::da_target`, 0: the next event is the first free node beyond the edge; above 0
-//! it skips the nodes closer than that).
+//! it skips the nodes closer than that; frictionless only, `StepOptions::da_target_for`), and REF (a folder of an earlier run: each curve is compared with
+//! that run's curve of the same mesh, printing the largest relative difference of p̄ over
+//! a/λ ∈ [0.05, 0.45], this curve read by `fe::convergence::p_at` at the earlier curve's points).
 //!
 //! Per mesh it prints the wall time and the Newton iterations, and writes `OUT/mN.csv`, one row per
 //! converged point: a/λ, p̄/E*, d/λ, Newton iterations and the face's friction state node by node
@@ -20,7 +22,8 @@
 use std::ops::ControlFlow;
 use std::time::Instant;
 use wavy::fe::{
-    solve_with_states, Interface, Kinematics, MeshLevel, NewtonOptions, SolveOptions, StepState,
+    convergence::p_at, solve_with_states, CurvePoint, Interface, Kinematics, MeshLevel,
+    NewtonOptions, SolveOptions, StepState,
 };
 
 fn env(name: &str, default: &str) -> String {
@@ -63,6 +66,30 @@ fn nodes_above(state: &StepState) -> Vec<usize> {
                 .expect("a node above every face node")
         })
         .collect()
+}
+
+/// The largest relative difference of `p̄` between `curve` and the curve of an earlier run in
+/// `file` (its a/λ and p̄/E* columns) over a/λ ∈ [0.05, 0.45], `curve` read at the earlier
+/// points, and the a/λ where it lies.
+fn largest_difference(curve: &[CurvePoint], file: &str) -> (f64, f64) {
+    let text = std::fs::read_to_string(file).unwrap_or_else(|e| panic!("REF: {file}: {e}"));
+    let mut largest = (0.0, f64::NAN);
+    for line in text.lines().skip(1) {
+        let mut fields = line.split(',').map(|f| f.parse::<f64>());
+        let (Some(Ok(a)), Some(Ok(p))) = (fields.next(), fields.next()) else {
+            panic!("REF: {file}: `{line}` has no a/λ and p̄/E*");
+        };
+        if !(0.05..=0.45).contains(&a) {
+            continue;
+        }
+        if let Some(q) = p_at(curve, a) {
+            let difference = (q / p - 1.0).abs();
+            if difference > largest.0 {
+                largest = (difference, a);
+            }
+        }
+    }
+    largest
 }
 
 fn main() {
@@ -145,6 +172,13 @@ fn main() {
             curve.points.len(),
             iterations as f64 / curve.points.len() as f64
         );
+        if let Ok(reference) = std::env::var("REF") {
+            let (difference, at) =
+                largest_difference(&curve.points, &format!("{reference}/m{nx}.csv"));
+            println!(
+                "mesh {nx}: p̄ differs from {reference}'s by at most {difference:.2e} (a/λ {at:.4})"
+            );
+        }
         std::fs::write(format!("{out}/m{nx}.csv"), rows.join("\n") + "\n").expect("write");
         std::fs::write(format!("{out}/nearedge{nx}.csv"), near.join("\n") + "\n").expect("write");
     }

@@ -41,7 +41,9 @@ def test_the_boundary_element_solver_refuses_what_it_does_not_model():
     with pytest.raises(ValueError, match="boundary-element solver's grid"):
         wavy.solve(solver="bem", ar=0.1, mesh=8)
     with pytest.raises(ValueError, match="belongs to the boundary-element solver"):
-        wavy.solve(ar=0.1, points=5)
+        wavy.solve(ar=0.1, grid_points=1024)
+    with pytest.raises(ValueError, match="frictional one steps node by node"):
+        wavy.solve(ar=0.1, tau_max_mpa=0.1, points=5)
     with pytest.raises(ValueError, match="solver"):
         wavy.solve(solver="spectral", ar=0.1)
     with pytest.raises(TypeError, match="grid_points must be an int"):

@@ -70,6 +70,14 @@ def test_unloading_substeps_match_the_cli():
     assert list(r.branch).count("unloading") > list(one.branch).count("unloading")
 
 
+def test_loading_points_match_the_cli():
+    args = ["--ar", 0.1, "--until-a-over-lambda", 0.3, "--points", 10]
+    rows = cli_rows("solve", *args)
+    r = wavy.solve(ar=0.1, until_a_over_lambda=0.3, points=10)
+    assert_same_rows(r, rows)
+    assert r.load_steps < len(wavy.solve(ar=0.1, until_a_over_lambda=0.3).a_over_lambda) / 2
+
+
 def test_exact_stick_matches_the_cli():
     args = ["--ar", 0.3, "--tau-max-mpa", 0.1, "--until-a-over-lambda", 0.3, "--mesh", 16,
             "--elastic-slip-over-element", 0]

@@ -126,8 +126,11 @@ def solve(
         With ``solver="bem"``: grid points per wavelength, a power of two. Default None:
         4096, or 64 per wavelength of a profile's finest harmonic.
     points : int, optional
-        With ``solver="bem"``: loading points up to the frictionless load of the target, in
-        [2, 10000]. Default None: 40.
+        Loading points up to the target, in [2, 10000]. With ``solver="fe"`` (a frictionless
+        sinusoid; a frictional curve steps node by node): steps of a/λ of about
+        ``until_a_over_lambda / points``, each to the first face node that far beyond the
+        contact edge (None: every edge event, node by node). With ``solver="bem"``: up to
+        the frictionless load of the target (None: 40). Default None.
     half_plane : bool, optional
         With ``solver="bem"``: the half-plane instead of the layer.
         Default False.

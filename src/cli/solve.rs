@@ -69,9 +69,11 @@ pub struct SolveArgs {
     /// wavelength of a profile's finest harmonic].
     #[arg(long)]
     pub grid_points: Option<usize>,
-    /// With --solver bem: loading points up to the frictionless load of the target (even steps
-    /// of the contact half-width on a crest); friction's extra load takes a few more.
-    /// [default: 40]
+    /// Loading points up to the target. With --solver fe (a frictionless sinusoid; a frictional
+    /// curve steps node by node): steps of a/λ of about the target a/λ over this, each to the
+    /// first face node that far beyond the contact edge [default: every edge event, node by node]. With --solver bem: even steps of the contact
+    /// half-width on a crest up to the frictionless load of the target; friction's extra load
+    /// takes a few more [default: 40].
     #[arg(long)]
     pub points: Option<usize>,
     /// With --solver bem: the half-plane instead of the layer of --thickness-over-lambda.

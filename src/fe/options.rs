@@ -84,13 +84,16 @@ impl Default for ContactOptions {
 /// and how an event's slab displacement is found.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct StepOptions {
-    /// Target advance of `a/λ` per load step: the next edge node is the first one at
-    /// least this far beyond the current edge. The default 0 steps node by node. Without
-    /// friction a step that skips nodes is predicted through their closings one after another
-    /// (a load tangent at each, no Newton iteration), which makes the steps of 0.01 cheaper
-    /// than node by node on fine meshes; with friction the skipped nodes enter contact in the
-    /// middle of a solve, which costs many more Newton iterations per step
-    /// (docs/performance.md, "steps over several nodes").
+    /// Target advance of `a/λ` per load step of a frictionless curve: the next edge node is the
+    /// first one at least this far beyond the current edge, so the points no longer grow with the
+    /// mesh, each still an edge event on a node; 0, the default, steps node by node. A step that
+    /// skips nodes is predicted through their closings one after another (a load tangent at each,
+    /// no Newton iteration); its points lie on the node-by-node curve, and the curve read between
+    /// them ([`crate::fe::convergence::p_at`]) is the node-by-node curve far below the
+    /// discretisation error (docs/performance.md, "frictionless steps over several nodes on
+    /// request"). Not the default: the scenes read some curves linearly between points, which
+    /// coarser points make less accurate. A frictional curve steps node by node whatever this
+    /// says ([`Self::da_target_for`]).
     pub da_target: f64,
     /// First slab-displacement increment in units of the amplitude `Δ`.
     pub first_step_over_amplitude: f64,
@@ -116,6 +119,22 @@ pub struct StepOptions {
     /// with it (docs/verification.md, "The energy audit").
     #[serde(default = "one_substep")]
     pub unloading_substeps: usize,
+}
+
+impl StepOptions {
+    /// The target advance of `a/λ` per load step on a model with (`frictional`) or without
+    /// friction: [`Self::da_target`] without; 0, node by node, with. A frictional curve's
+    /// history is integrated from one load step to the next, and nodes that close inside a step
+    /// make both the history and the Newton solve coarser: steps of 0.01 move a frictional curve
+    /// by more than its discretisation error, at more Newton iterations (docs/performance.md,
+    /// "steps over several nodes").
+    pub fn da_target_for(&self, frictional: bool) -> f64 {
+        if frictional {
+            0.0
+        } else {
+            self.da_target
+        }
+    }
 }
 
 fn one_substep() -> usize {

@@ -154,6 +154,56 @@ fn eval_rejects_out_of_range_flags_with_exit_2() {
     assert!(stderr(&o).contains("negative pressure"), "{}", stderr(&o));
 }
 
+/// `wavy solve --points N` of a frictionless sinusoid: steps of a/λ of about the target over N,
+/// so about N rows, each an edge event; refused with friction and with a profile, exit 2.
+#[test]
+fn solve_takes_loading_points_for_a_frictionless_sinusoid() {
+    let args = ["solve", "--ar", "0.1", "--until-a-over-lambda", "0.3"];
+    let o = wavy(&[&args[..], &["--points", "10"]].concat(), here());
+    let rows = eval_rows(&o);
+    assert!((7..=10).contains(&rows.len()), "{} rows", rows.len());
+    assert!(rows.last().unwrap().0 >= 0.3);
+    // every step but the last (which stops at the first node beyond the target) ends on the
+    // first face node 0.03 beyond the edge: within a tenth of 0.03 below (the edge lies between
+    // nodes) and the largest face spacing of mesh 48 above, 4/(5 · 48) ≈ 0.017
+    let steps: Vec<f64> = rows.windows(2).map(|w| w[1].0 - w[0].0).collect();
+    let within = |s: &f64| (0.027..=0.047).contains(s);
+    assert!(steps[..steps.len() - 1].iter().all(within), "{steps:?}");
+    // each point up to the target is an edge event of the node-by-node curve (the default): the
+    // same a/λ, and p̄ to 10⁻⁷ relative (measured 3·10⁻⁹, the events' gap tolerance)
+    let node_by_node = eval_rows(&wavy(&args, here()));
+    assert!(
+        node_by_node.len() > 2 * rows.len(),
+        "{}",
+        node_by_node.len()
+    );
+    let last = node_by_node.last().unwrap().0;
+    for &(a, p) in rows.iter().filter(|r| r.0 <= last) {
+        let same = node_by_node.iter().find(|q| (q.0 - a).abs() < 1e-9);
+        let &(_, q) = same.unwrap_or_else(|| panic!("a/λ {a} is not a node-by-node event"));
+        assert!((p / q - 1.0).abs() < 1e-7, "a/λ {a}: p̄ {p} against {q}");
+    }
+    for (asked, says) in [
+        (
+            vec!["--ar", "0.1", "--tau-max-mpa", "0.1", "--points", "10"],
+            "--points = 10: is for a frictionless curve; a frictional one steps node by node",
+        ),
+        (
+            vec!["--profile", "1:0.1,4:0.01", "--points", "10"],
+            "--points = 10: is for a single sinusoid; a profile steps from contact event to contact event",
+        ),
+        (
+            vec!["--ar", "0.1", "--points", "1"],
+            "--points = 1 is out of range; allowed: [2, 10000]",
+        ),
+    ] {
+        let o = wavy(&[&["solve"], &asked[..]].concat(), here());
+        assert_eq!(o.status.code(), Some(2), "{asked:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(says), "{asked:?}: {}", stderr(&o));
+        assert!(stdout(&o).is_empty());
+    }
+}
+
 /// `wavy solve` with friction: one CSV row per converged step up to the target a/λ, and bad
 /// friction flags rejected with exit 2, naming the flag, the value and the range.
 #[test]

@@ -298,8 +298,8 @@ impl EventSearch<'_> {
         }
     }
 
-    /// The predicted state of the event at `base.d + increment`: frictionless, when the target
-    /// lies beyond free nodes ([`StepOptions::da_target`]), followed through their closings
+    /// The predicted state of the event at `base.d + increment`: when the target may lie beyond
+    /// free nodes ([`StepOptions::da_target_for`], frictionless), followed through their closings
     /// ([`Self::predicted_through_closings`]); else [`predictor`]'s.
     fn predicted_event(
         &self,
@@ -308,7 +308,7 @@ impl EventSearch<'_> {
         start: TryStart<'_>,
     ) -> Option<State> {
         match start.tangent {
-            Some(z) if model.is_potential() && self.opts.steps.da_target > 0.0 => {
+            Some(z) if self.opts.steps.da_target_for(!model.is_potential()) > 0.0 => {
                 self.predicted_through_closings(model, asm, start, z)
             }
             _ => start.predicted(model),

@@ -86,6 +86,7 @@ pub(crate) fn loading_branch(
         opts,
         estar,
         events: Events::of(opts.stepping, sinusoid),
+        da_target: opts.steps.da_target_for(!model.is_potential()),
     };
     let mut step = 1;
     while !targets.any_reached(&path) {
@@ -290,12 +291,14 @@ impl Events {
 }
 
 /// What every load step of one loading branch reads: the model, the options, the plane-strain
-/// modulus `E*` the points are measured in, and which node's touchdown is the next event.
+/// modulus `E*` the points are measured in, which node's touchdown is the next event, and the
+/// target advance of `a/λ` per step ([`crate::fe::StepOptions::da_target_for`]).
 struct Branch<'a> {
     model: &'a Model,
     opts: &'a SolveOptions,
     estar: f64,
     events: Events,
+    da_target: f64,
 }
 
 /// A found event: the state where its node touches with zero force, the node, the Newton
@@ -346,7 +349,7 @@ impl Branch<'_> {
         let found = self.find_event(asm, path, k, tangent, step)?;
         let mut settled = self.settle_event(asm, path, found, step)?;
         let third_order = (step_path.as_ref())
-            .filter(|_| settled.released.is_none() && self.opts.steps.da_target == 0.0)
+            .filter(|_| settled.released.is_none() && self.da_target == 0.0)
             .and_then(|z| third_order_term(self.model, &path.cur, z, &settled.state));
         let measured = self.measure_event(asm, &mut settled);
         let overshot = self
@@ -407,7 +410,7 @@ impl Branch<'_> {
                 Some((k, path.with_third_order(tangent)))
             }
             Events::EdgeByEdge => {
-                let k = next_target(model, &path.cur, path.a, opts.steps.da_target)?;
+                let k = next_target(model, &path.cur, path.a, self.da_target)?;
                 activate_touching(model, &mut path.cur, k);
                 let tangent = tangent_at(model, asm, opts, &path.cur);
                 Some((k, path.with_third_order(tangent)))

@@ -13,7 +13,7 @@ use crate::fe::{
 use crate::profile::{FinerHarmonics, Profile};
 use crate::runner::requests::cost_estimate::{self, CostEstimate};
 use crate::runner::requests::input_checks::{
-    non_negative, positive, vtk_folder, within, InputError,
+    loading_points, non_negative, positive, vtk_folder, within, InputError,
 };
 use crate::runner::requests::profile_mesh;
 use crate::runner::requests::request_error::RequestError;
@@ -72,7 +72,10 @@ pub struct SolveRequest {
     pub solver: Solver,
     /// The boundary-element grid, points per wavelength (`None`: its default).
     pub grid_points: Option<usize>,
-    /// The boundary-element solver's loading points (`None`: its default).
+    /// Loading points up to the target (`None`: the solver's default). The boundary-element
+    /// solver steps the contact half-width evenly; the finite-element one steps `a/λ` by about
+    /// `until_a_over_lambda / points` from edge event to edge event
+    /// ([`crate::fe::StepOptions::da_target`]; a frictionless sinusoid only).
     pub points: Option<usize>,
     /// The boundary-element solver on the half-plane instead of the layer.
     pub half_plane: bool,
@@ -142,7 +145,6 @@ impl SolveRequest {
         self.check_ranges()?;
         let bem_only = [
             ("--grid-points", self.grid_points.is_some()),
-            ("--points", self.points.is_some()),
             ("--half-plane", self.half_plane),
         ];
         if self.solver != Solver::FiniteElement {
@@ -156,7 +158,7 @@ impl SolveRequest {
             return Err(refused(
                 flag,
                 "given",
-                "belongs to the boundary-element solver (--solver bem); the finite-element solver's points are its contact events",
+                "belongs to the boundary-element solver (--solver bem)",
             ));
         }
         self.prepare_fe()
@@ -275,6 +277,32 @@ impl SolveRequest {
         Ok(())
     }
 
+    /// The finite-element loading points asked for, checked: in range, and only for a
+    /// frictionless sinusoid. A frictional curve steps node by node (its friction history is
+    /// integrated step by step, [`crate::fe::StepOptions::da_target_for`]); a profile's steps are
+    /// its contact events, patches born and merging wherever they come.
+    fn fe_points(&self) -> Result<Option<usize>, RequestError> {
+        let Some(n) = self.points else {
+            return Ok(None);
+        };
+        let n = loading_points(n)?;
+        if self.tau_max_mpa > 0.0 {
+            return Err(refused(
+                "--points",
+                n,
+                "is for a frictionless curve; a frictional one steps node by node, its friction history integrated from step to step",
+            ));
+        }
+        if !self.finer_harmonics.is_empty() {
+            return Err(refused(
+                "--points",
+                n,
+                "is for a single sinusoid; a profile steps from contact event to contact event",
+            ));
+        }
+        Ok(Some(n))
+    }
+
     /// [`Self::prepare`] once the ranges hold.
     fn prepare_fe(&self) -> Result<PreparedSolve, RequestError> {
         self.check_fe_combinations()?;
@@ -309,6 +337,9 @@ impl SolveRequest {
         };
         if let Some(n) = self.unloading_substeps {
             options.steps.unloading_substeps = n;
+        }
+        if let Some(n) = self.fe_points()? {
+            options.steps.da_target = x / n as f64;
         }
         if let Some(c) = self.coarsen_at_aspect {
             options.grading.coarsen_at_aspect = c;
