@@ -112,16 +112,17 @@ reference:
 	$(CARGO) run --release --locked --quiet -- refine-reference
 
 ## The robustness grid (issue 42, goal 6): AR × μ × τ_max loaded to a/λ 0.45 and unloaded at each mesh of
-## ROBUSTNESS_MESHES, one case per core, each stopped after ROBUSTNESS_TIMEOUT_S seconds, written to
+## ROBUSTNESS_MESHES and τ_max of ROBUSTNESS_TAUS (MPa), one case per core, each stopped after ROBUSTNESS_TIMEOUT_S seconds, written to
 ## ROBUSTNESS_CSV, by default experiments/data/robustness_grid.csv (table and duration:
 ## docs/verification.md, "Robustness grid"; the cheap meshes of its test went to
 ## experiments/data/robustness_grid_cheap.csv).
 ROBUSTNESS_MESHES ?= 48,96,160
+ROBUSTNESS_TAUS ?= 0,0.05,0.1,0.2,0.3
 ROBUSTNESS_TIMEOUT_S ?= 1200
 ROBUSTNESS_CSV ?= experiments/data/robustness_grid.csv
 robustness:
 	$(CARGO) build --release --locked
-	$(CARGO) run --release --locked --quiet --example robustness_grid -- --wavy target/release/wavy --mesh $(ROBUSTNESS_MESHES) --timeout-s $(ROBUSTNESS_TIMEOUT_S) > $(ROBUSTNESS_CSV).tmp
+	$(CARGO) run --release --locked --quiet --example robustness_grid -- --wavy target/release/wavy --mesh $(ROBUSTNESS_MESHES) --tau-max-mpa $(ROBUSTNESS_TAUS) --timeout-s $(ROBUSTNESS_TIMEOUT_S) > $(ROBUSTNESS_CSV).tmp
 	mv $(ROBUSTNESS_CSV).tmp $(ROBUSTNESS_CSV)
 
 ## The property and fuzz suites with 10⁶ cases each (make test runs 10⁴); WAVY_FUZZ_SEED picks another seed.

@@ -7,8 +7,9 @@
 //! stopped; a case still running after `--timeout-s` seconds is stopped and reported as such.
 //!
 //! Run: `make robustness` (after a release build; `--wavy` names the binary,
-//! `--mesh 48,96,160` the meshes, `--timeout-s 1200` the limit per case: a frictional loop on
-//! mesh 160 takes minutes on one core, docs/verification.md).
+//! `--mesh 48,96,160` the meshes, `--tau-max-mpa 0,0.05,…` the columns of τ_max (every one by
+//! default), `--timeout-s 1200` the limit per case: a frictional loop on mesh 160 takes minutes on
+//! one core, docs/verification.md).
 use rayon::prelude::*;
 use std::io::Read;
 use std::process::{Command, Stdio};
@@ -37,11 +38,11 @@ struct Outcome {
     message: String,
 }
 
-fn cases(meshes: &[usize]) -> Vec<Case> {
+fn cases(meshes: &[usize], taus: &[f64]) -> Vec<Case> {
     let mut cases = Vec::new();
     for &mesh in meshes {
         for aspect_ratio in ASPECT_RATIOS {
-            for tau_max_mpa in TAU_MAX_MPA {
+            for &tau_max_mpa in taus {
                 // frictionless once per AR: μ plays no part
                 let mus: &[f64] = if tau_max_mpa == 0.0 {
                     &FRICTION_COEFFICIENTS[..1]
@@ -146,6 +147,7 @@ fn run(wavy: &str, case: Case, timeout: Duration) -> Outcome {
 fn main() {
     let mut wavy = String::from("target/release/wavy");
     let mut meshes = vec![48, 96, 160];
+    let mut taus = TAU_MAX_MPA.to_vec();
     let mut timeout = Duration::from_secs(1200);
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
@@ -158,6 +160,15 @@ fn main() {
                     .map(|m| m.parse().unwrap_or_else(|_| panic!("bad mesh {m}")))
                     .collect()
             }
+            "--tau-max-mpa" => {
+                taus = value
+                    .split(',')
+                    .map(|t| match t.parse() {
+                        Ok(t) if TAU_MAX_MPA.contains(&t) => t,
+                        _ => panic!("τ_max {t} is not one of the grid's {TAU_MAX_MPA:?}"),
+                    })
+                    .collect()
+            }
             "--timeout-s" => {
                 timeout = Duration::from_secs(
                     value
@@ -166,11 +177,11 @@ fn main() {
                 )
             }
             other => {
-                panic!("unknown argument {other} (--wavy PATH, --mesh 48,96,160, --timeout-s 1200)")
+                panic!("unknown argument {other} (--wavy PATH, --mesh 48,96,160, --tau-max-mpa 0,0.05,0.1,0.2,0.3, --timeout-s 1200)")
             }
         }
     }
-    let cases = cases(&meshes);
+    let cases = cases(&meshes, &taus);
     let outcomes: Vec<Outcome> = cases.par_iter().map(|&c| run(&wavy, c, timeout)).collect();
     let date = Command::new("date")
         .args(["-u", "+%Y-%m-%d"])
@@ -179,10 +190,14 @@ fn main() {
         .unwrap_or_default();
     println!("# written by `make robustness` (examples/robustness_grid.rs): `wavy solve --unload --until-a-over-lambda 0.45` per case, E* = 1 MPa, the other physics at its defaults");
     println!(
-        "# meshes {}, time limit {} s per case, {} cases at a time, {date}",
+        "# meshes {}, τ_max {} MPa, time limit {} s per case, {} cases at a time, {date}",
         meshes
             .iter()
             .map(|m| m.to_string())
+            .collect::<Vec<_>>()
+            .join(", "),
+        taus.iter()
+            .map(|t| t.to_string())
             .collect::<Vec<_>>()
             .join(", "),
         timeout.as_secs(),

@@ -9,7 +9,10 @@
 //! 3. cost growth at AR 0.3 with and without friction, mesh 16 to `--max-mesh` (one run
 //!    each, in a child process that also reports its peak memory `VmHWM`): the exponent
 //!    of wall time against DOFs (least squares in log–log), split into its factors
-//!    (load steps, tangent assemblies per step, time per assembly).
+//!    (load steps, tangent assemblies per step, time per assembly), and the growth from mesh 48
+//!    to 192 of the wall time and of the time per assembly (issue 42 goal 3); frictionless both
+//!    node by node (the scenes) and in steps of 0.01 in a/λ (`wavy solve`'s default,
+//!    `StepOptions::da_target`).
 //!
 //! Run: `make bench` (after a release build; `--wavy` names the binary of step 2).
 //! `--no-branch-switch` measures steps 1 and 3 without the semismooth choice of the
@@ -71,15 +74,17 @@ fn face_mesh(n: usize) -> MeshLevel {
     MeshLevel::Elements { nx: n, ny: n / 2 }
 }
 
-/// Child mode (`AR,τ,N`): one curve, then `seconds steps assemblies factorisations kB`.
+/// Child mode (`AR,τ,N,da`): one curve (`da`: `StepOptions::da_target`), then
+/// `seconds steps assemblies factorisations kB`.
 fn child(spec: &str) -> ! {
     let v: Vec<f64> = spec
         .split(',')
         .map(|x| x.parse().expect("number"))
         .collect();
-    let mesh = face_mesh(v[2] as usize);
+    let mut opts = options(face_mesh(v[2] as usize));
+    opts.steps.da_target = v[3];
     let start = Instant::now();
-    let c = match solve_curve(&problem(v[0], v[1]), &options(mesh), &mut |_| {
+    let c = match solve_curve(&problem(v[0], v[1]), &opts, &mut |_| {
         ControlFlow::Continue(())
     }) {
         Ok(c) => c,
@@ -207,20 +212,25 @@ fn cost_growth(max_mesh: usize) {
         .filter(|&n| n <= max_mesh)
         .collect();
     println!("## Cost growth, AR 0.3, one run per mesh (child process each)\n");
-    println!("| τ_max (MPa) | mesh | DOFs | wall (s) | load steps | tangent assemblies | factorisations | s per assembly | peak memory (MB) |");
-    println!("|---|---|---|---|---|---|---|---|---|");
-    for tau in [0.0, 0.2] {
+    println!("| τ_max (MPa) | steps of a/λ | mesh | DOFs | wall (s) | load steps | tangent assemblies | factorisations | s per assembly | peak memory (MB) |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    for (tau, da) in [(0.0, 0.0), (0.0, 0.01), (0.2, 0.0)] {
+        let steps_of = if da > 0.0 {
+            da.to_string()
+        } else {
+            "node by node".into()
+        };
         let mut rows: Vec<[f64; 5]> = Vec::new();
         let mut fitted: Vec<usize> = Vec::new();
         for &n in &meshes {
             let out = std::process::Command::new(&exe)
-                .env(CHILD, format!("0.3,{tau},{n}"))
+                .env(CHILD, format!("0.3,{tau},{n},{da}"))
                 .output()
                 .expect("child curve");
             assert!(out.status.success(), "mesh {n}, τ {tau}: child failed");
             let text = String::from_utf8_lossy(&out.stdout);
             if let Some(reason) = text.trim().strip_prefix("failed: ") {
-                println!("| {tau} | {n} | | no curve: {reason} (left out of the fit) | | | | | |");
+                println!("| {tau} | {steps_of} | {n} | | no curve: {reason} (left out of the fit) | | | | | |");
                 continue;
             }
             let v: Vec<f64> = text
@@ -229,7 +239,7 @@ fn cost_growth(max_mesh: usize) {
                 .collect();
             let d = face_mesh(n).unknowns() as f64;
             println!(
-                "| {tau} | {n} | {d} | {:.2} | {} | {} | {} | {:.2e} | {:.1} |",
+                "| {tau} | {steps_of} | {n} | {d} | {:.2} | {} | {} | {} | {:.2e} | {:.1} |",
                 v[0],
                 v[1],
                 v[2],
@@ -244,8 +254,16 @@ fn cost_growth(max_mesh: usize) {
         let (d, wall, steps, asm, per) = (col(0), col(1), col(2), col(3), col(4));
         let per_step: Vec<f64> = asm.iter().zip(&steps).map(|(a, s)| a / s).collect();
         let upper = d.len() / 2;
+        let at = |n: usize| fitted.iter().position(|&m| m == n).map(|i| rows[i]);
+        if let (Some(coarse), Some(fine)) = (at(48), at(192)) {
+            println!(
+                "\nτ_max {tau} MPa, steps {steps_of}: mesh 192 over mesh 48, wall {:.0}×, time per assembly {:.0}× (goal 3: wall at most 1.1 × that)",
+                fine[1] / coarse[1],
+                fine[4] / coarse[4]
+            );
+        }
         println!(
-            "\nτ_max {tau} MPa: wall ∝ DOFs^{:.2} (mesh {}–{}; upper half {}–{}: ^{:.2}) = steps ^{:.2} × assemblies per step ^{:.2} × time per assembly ^{:.2}\n",
+            "\nτ_max {tau} MPa, steps {steps_of}: wall ∝ DOFs^{:.2} (mesh {}–{}; upper half {}–{}: ^{:.2}) = steps ^{:.2} × assemblies per step ^{:.2} × time per assembly ^{:.2}\n",
             log_slope(&d, &wall),
             fitted[0],
             fitted[fitted.len() - 1],

@@ -129,8 +129,9 @@ def solve(
         Loading points up to the target, in [2, 10000]. With ``solver="fe"`` (a frictionless
         sinusoid; a frictional curve steps node by node): steps of a/λ of about
         ``until_a_over_lambda / points``, each to the first face node that far beyond the
-        contact edge (None: every edge event, node by node). With ``solver="bem"``: up to
-        the frictionless load of the target (None: 40). Default None.
+        contact edge (None: 45, steps of 0.01 to the default target, or with ``unload`` node by
+        node; 10000: node by node). With ``solver="bem"``: up to the frictionless load of the
+        target (None: 40). Default None.
     half_plane : bool, optional
         With ``solver="bem"``: the half-plane instead of the layer.
         Default False.

@@ -90,10 +90,11 @@ pub struct StepOptions {
     /// skips nodes is predicted through their closings one after another (a load tangent at each,
     /// no Newton iteration); its points lie on the node-by-node curve, and the curve read between
     /// them ([`crate::fe::convergence::p_at`]) is the node-by-node curve far below the
-    /// discretisation error (docs/performance.md, "frictionless steps over several nodes on
-    /// request"). Not the default: the scenes read some curves linearly between points, which
-    /// coarser points make less accurate. A frictional curve steps node by node whatever this
-    /// says ([`Self::da_target_for`]).
+    /// discretisation error (docs/performance.md, "frictionless steps over several nodes").
+    /// `wavy solve` and `wavy.solve` step 0.01 by default; the scenes step node by
+    /// node, since some read curves linearly between points, which coarser points make less
+    /// accurate. A frictional curve steps node by node whatever this says
+    /// ([`Self::da_target_for`]).
     pub da_target: f64,
     /// First slab-displacement increment in units of the amplitude `Δ`.
     pub first_step_over_amplitude: f64,

@@ -155,7 +155,8 @@ fn eval_rejects_out_of_range_flags_with_exit_2() {
 }
 
 /// `wavy solve --points N` of a frictionless sinusoid: steps of a/λ of about the target over N,
-/// so about N rows, each an edge event; refused with friction and with a profile, exit 2.
+/// so about N rows, each an edge event (45 by default); refused with friction and with a
+/// profile, exit 2.
 #[test]
 fn solve_takes_loading_points_for_a_frictionless_sinusoid() {
     let args = ["solve", "--ar", "0.1", "--until-a-over-lambda", "0.3"];
@@ -169,9 +170,10 @@ fn solve_takes_loading_points_for_a_frictionless_sinusoid() {
     let steps: Vec<f64> = rows.windows(2).map(|w| w[1].0 - w[0].0).collect();
     let within = |s: &f64| (0.027..=0.047).contains(s);
     assert!(steps[..steps.len() - 1].iter().all(within), "{steps:?}");
-    // each point up to the target is an edge event of the node-by-node curve (the default): the
-    // same a/λ, and p̄ to 10⁻⁷ relative (measured 3·10⁻⁹, the events' gap tolerance)
-    let node_by_node = eval_rows(&wavy(&args, here()));
+    // each point up to the target is an edge event of the node-by-node curve (steps of 3·10⁻⁵,
+    // below every face spacing): the same a/λ, and p̄ to 10⁻⁷ relative (measured 3·10⁻⁹, the
+    // events' gap tolerance)
+    let node_by_node = eval_rows(&wavy(&[&args[..], &["--points", "10000"]].concat(), here()));
     assert!(
         node_by_node.len() > 2 * rows.len(),
         "{}",
@@ -183,6 +185,10 @@ fn solve_takes_loading_points_for_a_frictionless_sinusoid() {
         let &(_, q) = same.unwrap_or_else(|| panic!("a/λ {a} is not a node-by-node event"));
         assert!((p / q - 1.0).abs() < 1e-7, "a/λ {a}: p̄ {p} against {q}");
     }
+    // without --points, steps of 0.01 to a/λ 0.45: about 40 points at mesh 96 (43 measured), not
+    // one per face node (91)
+    let default = eval_rows(&wavy(&["solve", "--ar", "0.1", "--mesh", "96"], here()));
+    assert!((38..=45).contains(&default.len()), "{} rows", default.len());
     for (asked, says) in [
         (
             vec!["--ar", "0.1", "--tau-max-mpa", "0.1", "--points", "10"],

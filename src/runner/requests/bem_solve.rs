@@ -8,7 +8,8 @@ use crate::bem::frictional_curve::{self, CurveRequest, LoadTarget};
 use crate::bem::{self, ElasticBody};
 use crate::fe::{self, CurvePoint, Kinematics, LoadDirection, SolveWork};
 use crate::profile::Profile;
-use crate::runner::requests::input_checks::{loading_points, InputError};
+use crate::runner::requests::input_checks::InputError;
+use crate::runner::requests::loading_points;
 use crate::runner::requests::request_error::RequestError;
 use crate::runner::requests::solve_outcome::{CycleEnergy, SolveOutcome, SolveRow};
 use crate::runner::requests::solve_request::{refused, SolveRequest};
@@ -67,7 +68,7 @@ impl SolveRequest {
             }
         };
         let grid_points = self.bem_grid_points(&profile)?;
-        let points = loading_points(self.points.unwrap_or(DEFAULT_POINTS))?;
+        let points = loading_points::in_range(self.points.unwrap_or(DEFAULT_POINTS))?;
         let target = match (self.until_p_over_estar, self.until_contact_fraction) {
             (Some(p), _) => LoadTarget::MeanPressure(p),
             (None, Some(c)) => LoadTarget::ContactFraction(c),

@@ -69,15 +69,6 @@ pub fn non_negative(flag: &str, value: f64) -> Result<(), InputError> {
     }
 }
 
-/// `points` when it is a number of loading points (`--points`) both solvers take, in
-/// [2, 10000], else an error naming the flag.
-pub fn loading_points(points: usize) -> Result<usize, InputError> {
-    match (2..=10_000).contains(&points) {
-        true => Ok(points),
-        false => Err(out_of_range("--points", points, "[2, 10000]")),
-    }
-}
-
 /// `Ok` when `value` is a contact half-width a/λ in `[0, 0.5]`, else an error naming `flag`.
 pub fn a_over_lambda_in_range(flag: &str, value: f64) -> Result<(), InputError> {
     if value.is_finite() && (0.0..=0.5).contains(&value) {

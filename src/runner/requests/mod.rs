@@ -8,6 +8,7 @@ pub mod bem_solve;
 pub mod cost_estimate;
 pub mod eval_request;
 pub mod input_checks;
+pub mod loading_points;
 pub mod profile_mesh;
 pub mod request_error;
 pub mod solve_outcome;

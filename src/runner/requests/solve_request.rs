@@ -13,8 +13,9 @@ use crate::fe::{
 use crate::profile::{FinerHarmonics, Profile};
 use crate::runner::requests::cost_estimate::{self, CostEstimate};
 use crate::runner::requests::input_checks::{
-    loading_points, non_negative, positive, vtk_folder, within, InputError,
+    non_negative, positive, vtk_folder, within, InputError,
 };
+use crate::runner::requests::loading_points;
 use crate::runner::requests::profile_mesh;
 use crate::runner::requests::request_error::RequestError;
 use crate::runner::requests::solve_outcome::{CycleEnergy, ExtraColumn, SolveOutcome, SolveRow};
@@ -277,32 +278,6 @@ impl SolveRequest {
         Ok(())
     }
 
-    /// The finite-element loading points asked for, checked: in range, and only for a
-    /// frictionless sinusoid. A frictional curve steps node by node (its friction history is
-    /// integrated step by step, [`crate::fe::StepOptions::da_target_for`]); a profile's steps are
-    /// its contact events, patches born and merging wherever they come.
-    fn fe_points(&self) -> Result<Option<usize>, RequestError> {
-        let Some(n) = self.points else {
-            return Ok(None);
-        };
-        let n = loading_points(n)?;
-        if self.tau_max_mpa > 0.0 {
-            return Err(refused(
-                "--points",
-                n,
-                "is for a frictionless curve; a frictional one steps node by node, its friction history integrated from step to step",
-            ));
-        }
-        if !self.finer_harmonics.is_empty() {
-            return Err(refused(
-                "--points",
-                n,
-                "is for a single sinusoid; a profile steps from contact event to contact event",
-            ));
-        }
-        Ok(Some(n))
-    }
-
     /// [`Self::prepare`] once the ranges hold.
     fn prepare_fe(&self) -> Result<PreparedSolve, RequestError> {
         self.check_fe_combinations()?;
@@ -338,7 +313,12 @@ impl SolveRequest {
         if let Some(n) = self.unloading_substeps {
             options.steps.unloading_substeps = n;
         }
-        if let Some(n) = self.fe_points()? {
+        let curve = loading_points::FeCurve {
+            frictional: self.tau_max_mpa > 0.0,
+            profile: !self.finer_harmonics.is_empty(),
+            unload: self.unload,
+        };
+        if let Some(n) = loading_points::fe_points(self.points, curve)? {
             options.steps.da_target = x / n as f64;
         }
         if let Some(c) = self.coarsen_at_aspect {
