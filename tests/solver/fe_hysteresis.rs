@@ -88,13 +88,13 @@ fn assert_closes(w: f64, w_load: f64, what: &str) {
 /// Frictionless: unloading revisits every load of the loading branch, exactly, and finds the
 /// same state there within a bound that shrinks with the Newton tolerance rtol, down to a
 /// round-off floor. Measured at AR 0.3 on the coarse mesh, at rtol 1e-6, 1e-8, 1e-10:
-/// |Δp̄|/p̄_max = 9.0e-8, 1.2e-10, 2.4e-11, asserted ≤ 0.1 rtol + 1e-10 (1.1 to 8 times the
-/// measured); the contact half-width too, |Δa/λ| = 6.4e-10, 6.9e-12, 8.2e-13, asserted
-/// ≤ 0.02 rtol + 1e-10 (31 to 120 times; an edge one element off would be 2e-2); |W|/W_load =
-/// 2.0e-8, 7.6e-12, 1.8e-12, asserted ≤ 0.05 rtol + 1e-11 (2.5, 67 and 9 times the measured),
+/// |Δp̄|/p̄_max = 2.9e-8, 1.8e-12, 1.8e-12, asserted ≤ 0.1 rtol + 1e-10 (3.4 times the measured
+/// at 1e-6, the floor below); the contact half-width too, |Δa/λ| = 1.1e-9, 8.2e-13, 8.2e-13,
+/// asserted ≤ 0.02 rtol + 1e-10 (18 times at 1e-6; an edge one element off would be 2e-2);
+/// |W|/W_load = 1.1e-8, 1.1e-13, 1.1e-13, asserted ≤ 0.05 rtol + 1e-11 (4.7 times at 1e-6),
 /// besides the scene's own bound 1e-6. The loosest tolerance's differences are of the order of
-/// the tolerance itself: with the pressure iterate (`NewtonOptions::pressure_iterate`) Newton
-/// reaches it in fewer iterations and ends nearer it (before it: 2.3e-8, 5.9e-9 and 6.4e-10).
+/// the tolerance itself; at the tighter two each unloading step starts from the loading state
+/// with its force-free node released and lands on the loading state to round-off.
 #[test]
 fn frictionless_loop_closes_within_a_bound_that_shrinks_with_the_tolerance() {
     let p = problem(0.3, 0.0);

@@ -4,7 +4,7 @@
 use crate::fe::contact::measure::{measure_between_events, Measured};
 use crate::fe::error::{CurveFailure, SolveError, StepFail};
 use crate::fe::model::{Model, State};
-use crate::fe::newton::active_set::Hold;
+use crate::fe::newton::active_set::{release_scale, Hold};
 use crate::fe::newton::assembly::Assembly;
 use crate::fe::stepping::load_path::LoadPath;
 use crate::fe::stepping::loading::loading_branch;
@@ -38,8 +38,9 @@ pub(crate) fn trace_cycle(
 /// Displacement-controlled: the slab retracts through the slab displacements of the loading
 /// events in reverse (each interval in [`crate::fe::StepOptions::unloading_substeps`] equal
 /// steps, [`retraced_displacements`]), then to `d = 0`, so that a frictionless (reversible) cycle revisits the loading
-/// states and the two branches can be compared point by point. Each step predicts along the
-/// load tangent, equilibrates (nodes whose normal force turns tensile are released, the
+/// states and the two branches can be compared point by point. Each step (frictionless, from
+/// its base with the nodes that carry no force released, [`released_at_zero_force`]) predicts
+/// along the load tangent, equilibrates (nodes whose normal force turns tensile are released, the
 /// return mapping carries the slip history, committed after every step;
 /// [`displacement_step`]) and is measured with the edge in the last loaded element, as at the
 /// loading events ([`measure_between_events`]). A step that fails is approached through
@@ -73,7 +74,9 @@ fn unload(
             .count_step(path, opts)
             .map_err(|e| retraction.fail(path, e))?;
         // exactly the target, so that a reversible cycle revisits the loading displacements
-        let step = displacement_step(model, asm, opts, retraction.base(path), d, Hold::NONE);
+        let released = released_at_zero_force(model, asm, retraction.base(path));
+        let base = released.as_ref().unwrap_or(retraction.base(path));
+        let step = displacement_step(model, asm, opts, base, d, Hold::NONE);
         match step {
             Ok((mut st, iterations)) if scheduled => {
                 asm.commit_slip(model, &mut st);
@@ -91,6 +94,37 @@ fn unload(
         }
     }
     Ok(retraction.points)
+}
+
+/// A contact-face node carries no force, for the unloading branch, when its multiplier is at most
+/// this times the largest: at the events it is 10⁻¹¹ of it, the next smallest 0.05 (AR 0.3,
+/// meshes 48 and 96), so the choice is far from both.
+const ZERO_FORCE_RTOL: f64 = 1e-6;
+
+/// `st` with the active nodes that carry no force ([`ZERO_FORCE_RTOL`]) released, frictionless;
+/// `None` when there is none, with friction, or when `st` is inverted. A frictionless branch is
+/// reversible: the node that closed at a loading event carries no force at its slab displacement,
+/// and any retraction makes its force tensile, so the unloading step from there starts with it
+/// free rather than with an active-set pass that holds it on the indenter (docs/performance.md,
+/// "frictionless unloading"). With friction the order in which the contact set changes moves
+/// the branch, and the active-set passes decide.
+fn released_at_zero_force(model: &Model, asm: &mut Assembly, st: &State) -> Option<State> {
+    if !model.is_potential() {
+        return None;
+    }
+    let f = asm.assemble(model, st, false)?;
+    let multipliers = model.multipliers(st, &f.grad);
+    let scale = release_scale(&multipliers);
+    let unloaded = |k: &usize| st.active[*k] && multipliers[*k] <= ZERO_FORCE_RTOL * scale;
+    let zero: Vec<usize> = (0..st.active.len()).filter(unloaded).collect();
+    if zero.is_empty() {
+        return None;
+    }
+    let mut released = st.clone();
+    for k in zero {
+        released.active[k] = false;
+    }
+    Some(released)
 }
 
 /// One slab displacement the unloading branch steps to.
