@@ -4,7 +4,7 @@
 use crate::fe::contact::measure::{measure_between_events, Measured};
 use crate::fe::error::{CurveFailure, SolveError, StepFail};
 use crate::fe::model::{Model, State};
-use crate::fe::newton::active_set::{release_scale, Hold};
+use crate::fe::newton::active_set::{release_forces, release_scale, Hold};
 use crate::fe::newton::assembly::Assembly;
 use crate::fe::stepping::load_path::LoadPath;
 use crate::fe::stepping::loading::loading_branch;
@@ -38,9 +38,9 @@ pub(crate) fn trace_cycle(
 /// Displacement-controlled: the slab retracts through the slab displacements of the loading
 /// events in reverse (each interval in [`crate::fe::StepOptions::unloading_substeps`] equal
 /// steps, [`retraced_displacements`]), then to `d = 0`, so that a frictionless (reversible) cycle revisits the loading
-/// states and the two branches can be compared point by point. Each step (frictionless, from
-/// its base with the nodes that carry no force released, [`released_at_zero_force`]) predicts
-/// along the load tangent, equilibrates (nodes whose normal force turns tensile are released, the
+/// states and the two branches can be compared point by point. Each step (from its base with
+/// the nodes that carry no force released, [`released_at_zero_force`]) predicts along the load
+/// tangent, equilibrates (nodes whose normal force turns tensile are released, the
 /// return mapping carries the slip history, committed after every step;
 /// [`displacement_step`]) and is measured with the edge in the last loaded element, as at the
 /// loading events ([`measure_between_events`]). A step that fails is approached through
@@ -96,26 +96,24 @@ fn unload(
     Ok(retraction.points)
 }
 
-/// A contact-face node carries no force, for the unloading branch, when its multiplier is at most
-/// this times the largest: at the events it is 10⁻¹¹ of it, the next smallest 0.05 (AR 0.3,
-/// meshes 48 and 96), so the choice is far from both.
+/// A contact-face node carries no force, for the unloading branch, when its release force
+/// ([`release_forces`]) is at most this times the largest: at the events it is 10⁻¹¹ of it, the
+/// next smallest 0.05 (frictionless AR 0.3, meshes 48 and 96), so the choice is far from both.
 const ZERO_FORCE_RTOL: f64 = 1e-6;
 
-/// `st` with the active nodes that carry no force ([`ZERO_FORCE_RTOL`]) released, frictionless;
-/// `None` when there is none, with friction, or when `st` is inverted. A frictionless branch is
-/// reversible: the node that closed at a loading event carries no force at its slab displacement,
-/// and any retraction makes its force tensile, so the unloading step from there starts with it
-/// free rather than with an active-set pass that holds it on the indenter (docs/performance.md,
-/// "frictionless unloading"). With friction the order in which the contact set changes moves
-/// the branch, and the active-set passes decide.
+/// `st` with the active nodes that carry no force ([`ZERO_FORCE_RTOL`]) released; `None` when
+/// there is none or `st` is inverted. The node that closed at a loading event carries no force
+/// at its slab displacement, and any retraction makes its force tensile, so the unloading step
+/// from there starts with it free rather than with an active-set pass that holds it on the
+/// indenter. Without a normal force it has no friction force either, so the branch is the same,
+/// only Newton's path to it shorter (docs/performance.md, "the force-free nodes released"; a node with
+/// a positive force is left to the passes: released ahead by its predicted force, the branch
+/// moves, 2026-11-29 there).
 fn released_at_zero_force(model: &Model, asm: &mut Assembly, st: &State) -> Option<State> {
-    if !model.is_potential() {
-        return None;
-    }
     let f = asm.assemble(model, st, false)?;
-    let multipliers = model.multipliers(st, &f.grad);
-    let scale = release_scale(&multipliers);
-    let unloaded = |k: &usize| st.active[*k] && multipliers[*k] <= ZERO_FORCE_RTOL * scale;
+    let forces = release_forces(model, st, &f.grad);
+    let scale = release_scale(&forces);
+    let unloaded = |k: &usize| st.active[*k] && forces[*k] <= ZERO_FORCE_RTOL * scale;
     let zero: Vec<usize> = (0..st.active.len()).filter(unloaded).collect();
     if zero.is_empty() {
         return None;
