@@ -72,9 +72,9 @@ pub struct SolveArgs {
     /// Loading points up to the target. With --solver fe (a frictionless sinusoid; a frictional
     /// curve steps node by node): steps of a/λ of about the target a/λ over this, each to the
     /// first face node that far beyond the contact edge (10000: node by node) [default: 45,
-    /// steps of 0.01 to the default target; with --unload, node by node]. With --solver bem: even steps of the contact
-    /// half-width on a crest up to the frictionless load of the target; friction's extra load
-    /// takes a few more [default: 40].
+    /// steps of 0.01 to the default target; with --unload, node by node]. With --solver bem:
+    /// even steps of the contact half-width on a crest up to the frictionless load of the
+    /// target; friction's extra load takes a few more [default: 40].
     #[arg(long)]
     pub points: Option<usize>,
     /// With --solver bem: the half-plane instead of the layer of --thickness-over-lambda.

@@ -137,3 +137,26 @@ fn steps_over_several_nodes_land_on_the_node_by_node_curve() {
     assert!(worst < 1e-7, "p̄ apart by {worst:e}");
     assert!(per_point <= 3.1, "{per_point}");
 }
+
+/// A frictional curve steps node by node whatever `StepOptions::da_target` says
+/// (`StepOptions::da_target_for`): its friction history is integrated from step to step, and steps
+/// over several nodes would move it. AR 0.3, τ_max/E* 0.1, μ 1, coarse mesh, to a/λ 0.3: the
+/// same points, bit for bit, with `da_target` 0 and 0.05.
+#[test]
+fn a_frictional_curve_steps_node_by_node_whatever_the_target_advance() {
+    let problem = LayerProblem {
+        interface: Interface::coulomb_orowan(1.0, 0.1, 0.005),
+        ..wavy::defaults::layer_problem(0.3)
+    };
+    let opts = |da_target| SolveOptions {
+        mesh: MeshLevel::Coarse,
+        until_a_over_lambda: 0.3,
+        steps: StepOptions {
+            da_target,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let (node_by_node, asked) = (curve(&problem, &opts(0.0)), curve(&problem, &opts(0.05)));
+    assert_eq!(node_by_node.points, asked.points);
+}
