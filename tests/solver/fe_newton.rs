@@ -21,6 +21,27 @@ fn curve(problem: &LayerProblem, opts: &SolveOptions) -> Curve {
         .unwrap_or_else(|f| panic!("{problem:?}: {}", f.error))
 }
 
+/// AR 0.3 with Coulomb–Orowan friction: τ_max/E* 0.1, μ 1, the default stick band.
+fn frictional_ar_0_3() -> LayerProblem {
+    LayerProblem {
+        interface: Interface::coulomb_orowan(1.0, 0.1, 0.005),
+        ..wavy::defaults::layer_problem(0.3)
+    }
+}
+
+/// The default options on `mesh` to a/λ `until`, with load steps that target `da_target` in a/λ.
+fn stepped(mesh: MeshLevel, until: f64, da_target: f64) -> SolveOptions {
+    SolveOptions {
+        mesh,
+        until_a_over_lambda: until,
+        steps: StepOptions {
+            da_target,
+            ..Default::default()
+        },
+        ..Default::default()
+    }
+}
+
 fn iterations_per_point(curve: &Curve) -> f64 {
     let total: usize = curve.points.iter().map(|p| p.newton_iterations).sum();
     total as f64 / curve.points.len() as f64
@@ -81,10 +102,7 @@ fn the_pressure_iterate_changes_the_path_not_the_curve() {
         },
         ..Default::default()
     };
-    let frictional = LayerProblem {
-        interface: Interface::coulomb_orowan(1.0, 0.1, 0.005),
-        ..wavy::defaults::layer_problem(0.3)
-    };
+    let frictional = frictional_ar_0_3();
     for problem in [wavy::defaults::layer_problem(0.3), frictional] {
         let (with, without) = (curve(&problem, &opts(true)), curve(&problem, &opts(false)));
         let largest = largest_relative_difference(&with, &without);
@@ -110,14 +128,7 @@ fn the_pressure_iterate_changes_the_path_not_the_curve() {
 #[test]
 fn steps_over_several_nodes_land_on_the_node_by_node_curve() {
     let problem = wavy::defaults::layer_problem(0.3);
-    let opts = |da_target| SolveOptions {
-        mesh: MeshLevel::along_face(48),
-        steps: StepOptions {
-            da_target,
-            ..Default::default()
-        },
-        ..Default::default()
-    };
+    let opts = |da_target| stepped(MeshLevel::along_face(48), 0.45, da_target);
     let node_by_node = curve(&problem, &opts(0.0));
     let skipping = curve(&problem, &opts(0.01));
     let mut worst = 0.0_f64;
@@ -144,19 +155,8 @@ fn steps_over_several_nodes_land_on_the_node_by_node_curve() {
 /// same points, bit for bit, with `da_target` 0 and 0.05.
 #[test]
 fn a_frictional_curve_steps_node_by_node_whatever_the_target_advance() {
-    let problem = LayerProblem {
-        interface: Interface::coulomb_orowan(1.0, 0.1, 0.005),
-        ..wavy::defaults::layer_problem(0.3)
-    };
-    let opts = |da_target| SolveOptions {
-        mesh: MeshLevel::Coarse,
-        until_a_over_lambda: 0.3,
-        steps: StepOptions {
-            da_target,
-            ..Default::default()
-        },
-        ..Default::default()
-    };
+    let problem = frictional_ar_0_3();
+    let opts = |da_target| stepped(MeshLevel::Coarse, 0.3, da_target);
     let (node_by_node, asked) = (curve(&problem, &opts(0.0)), curve(&problem, &opts(0.05)));
     assert_eq!(node_by_node.points, asked.points);
 }
