@@ -21,6 +21,7 @@
 
 use std::ops::ControlFlow;
 use std::time::Instant;
+use wavy::csv_text::CsvTable;
 use wavy::fe::{
     convergence::p_at, solve_with_states, CurvePoint, Interface, Kinematics, MeshLevel,
     NewtonOptions, SolveOptions, StepState,
@@ -73,12 +74,15 @@ fn nodes_above(state: &StepState) -> Vec<usize> {
 /// points, and the a/λ where it lies.
 fn largest_difference(curve: &[CurvePoint], file: &str) -> (f64, f64) {
     let text = std::fs::read_to_string(file).unwrap_or_else(|e| panic!("REF: {file}: {e}"));
+    let table = CsvTable::parse(&text).unwrap_or_else(|e| panic!("REF: {file}: {e}"));
+    let number = |row: usize, name: &str| -> f64 {
+        let cell = table.cell(row, name);
+        cell.and_then(|c| c.parse().ok())
+            .unwrap_or_else(|| panic!("REF: {file}: row {row} has no {name}"))
+    };
     let mut largest = (0.0, f64::NAN);
-    for line in text.lines().skip(1) {
-        let mut fields = line.split(',').map(|f| f.parse::<f64>());
-        let (Some(Ok(a)), Some(Ok(p))) = (fields.next(), fields.next()) else {
-            panic!("REF: {file}: `{line}` has no a/λ and p̄/E*");
-        };
+    for row in 0..table.rows.len() {
+        let (a, p) = (number(row, "a_over_lambda"), number(row, "p_over_estar"));
         if !(0.05..=0.45).contains(&a) {
             continue;
         }

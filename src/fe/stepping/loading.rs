@@ -86,7 +86,6 @@ pub(crate) fn loading_branch(
         opts,
         estar,
         events: Events::of(opts.stepping, sinusoid),
-        da_target: opts.steps.da_target_for(!model.is_potential()),
     };
     let mut step = 1;
     while !targets.any_reached(&path) {
@@ -291,14 +290,12 @@ impl Events {
 }
 
 /// What every load step of one loading branch reads: the model, the options, the plane-strain
-/// modulus `E*` the points are measured in, which node's touchdown is the next event, and the
-/// target advance of `a/λ` per step ([`crate::fe::StepOptions::da_target_for`]).
+/// modulus `E*` the points are measured in, and which node's touchdown is the next event.
 struct Branch<'a> {
     model: &'a Model,
     opts: &'a SolveOptions,
     estar: f64,
     events: Events,
-    da_target: f64,
 }
 
 /// A found event: the state where its node touches with zero force, the node, the Newton
@@ -334,6 +331,12 @@ struct EventPoint {
 }
 
 impl Branch<'_> {
+    /// The target advance of `a/λ` per step on this branch's model
+    /// ([`crate::fe::StepOptions::da_target_for`]: node by node with friction).
+    fn da_target(&self) -> f64 {
+        self.opts.steps.da_target_for(!self.model.is_potential())
+    }
+
     /// One load step's point, and whether it lies on the mean-pressure target: the event on
     /// node `k` found, settled and measured; an event beyond the target replaced by the state on
     /// it ([`Self::land_between`]).
@@ -349,7 +352,7 @@ impl Branch<'_> {
         let found = self.find_event(asm, path, k, tangent, step)?;
         let mut settled = self.settle_event(asm, path, found, step)?;
         let third_order = (step_path.as_ref())
-            .filter(|_| settled.released.is_none() && self.da_target == 0.0)
+            .filter(|_| settled.released.is_none() && self.da_target() == 0.0)
             .and_then(|z| third_order_term(self.model, &path.cur, z, &settled.state));
         let measured = self.measure_event(asm, &mut settled);
         let overshot = self
@@ -410,7 +413,7 @@ impl Branch<'_> {
                 Some((k, path.with_third_order(tangent)))
             }
             Events::EdgeByEdge => {
-                let k = next_target(model, &path.cur, path.a, self.da_target)?;
+                let k = next_target(model, &path.cur, path.a, self.da_target())?;
                 activate_touching(model, &mut path.cur, k);
                 let tangent = tangent_at(model, asm, opts, &path.cur);
                 Some((k, path.with_third_order(tangent)))
