@@ -355,9 +355,12 @@ impl EventSearch<'_> {
     }
 
     /// With friction the step is path dependent: when the event cannot be reached in one
-    /// increment, advance by converged, committed sub-steps (the trial increment cut
-    /// each time, the target node held free) and retry the bordered solve from there. Failing,
-    /// the iterations every try spent.
+    /// increment, advance by a converged, committed sub-step (half the failed try's increment,
+    /// halved again while it fails; the target node held free) and retry the bordered solve from
+    /// there, its increment predicted afresh from the sub-step's gap and load path
+    /// ([`predicted_closing`]): the event lies that far on, whatever the sub-step's size, and a
+    /// bordered try that starts short of it has the whole remaining way to go. Failing, the
+    /// iterations every try spent.
     fn bordered_in_substeps(
         &self,
         model: &Model,
@@ -384,10 +387,14 @@ impl EventSearch<'_> {
             match sub {
                 Ok((mut st, it)) => {
                     spent += it;
-                    if self.gap(model, &st) > self.gap_tol {
+                    let gap = self.gap(model, &st);
+                    if gap > self.gap_tol {
                         asm.commit_slip(model, &mut st);
                         base_prev = Some(std::mem::replace(&mut base, st));
                         tangent = tangent_at(model, asm, self.opts, &base);
+                        let remaining = (tangent.as_ref())
+                            .and_then(|z| predicted_closing(model, &base, self.node, gap, z));
+                        increment = remaining.unwrap_or(increment);
                     }
                 }
                 Err(f) => spent += f.iterations(),
