@@ -8,6 +8,8 @@ pub use crate::atomic_write;
 pub mod measured_points;
 pub mod requests;
 pub mod review;
+#[cfg(test)]
+mod review_tests;
 pub mod scenes;
 pub mod sweep;
 

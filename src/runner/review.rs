@@ -18,8 +18,9 @@ use std::fmt::Write;
 
 /// Columns that are the abscissa of a curve, in order of preference.
 const ABSCISSAE: [&str; 3] = ["a_over_lambda", "load_n", "x_over_lambda"];
-/// Columns that name a panel or a series.
-const KEYS: [&str; 7] = [
+/// Columns that name a panel or a series (the hysteresis tables name a loop by its series,
+/// shear strength, thickness and branch: several loops share an aspect ratio).
+const KEYS: [&str; 11] = [
     "tier",
     "aspect_ratio",
     "tau_max_mpa",
@@ -27,6 +28,10 @@ const KEYS: [&str; 7] = [
     "estar_mpa",
     "reading",
     "coefficient",
+    "series",
+    "tau_max_over_estar",
+    "thickness_over_lambda",
+    "branch",
 ];
 /// Columns that identify a row without being a value.
 const IDENTIFIERS: [&str; 1] = ["node"];
@@ -530,68 +535,4 @@ struct OverlayPanel {
 
 fn panels_of(t: &CsvTable, roles: &ColumnRoles) -> BTreeMap<String, Vec<usize>> {
     panels(t, &roles.keys)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    const BASE: &str = "aspect_ratio,tau_max_mpa,a_over_lambda,p_over_estar_wnl,wnl_extrapolated\n\
-        0.1,0,0,0,false\n0.1,0,0.25,0.1,false\n0.1,0,0.5,0.3,false\n\
-        0.3,0.2,0,0,false\n0.3,0.2,0.25,0.5,false\n0.3,0.2,0.5,0.9,false\n";
-
-    #[test]
-    fn a_known_change_is_named_by_its_panel_and_size() {
-        let new = BASE.replace("0.3,0.2,0.25,0.5,", "0.3,0.2,0.25,0.55,");
-        let (b, n) = (
-            CsvTable::parse(BASE).unwrap(),
-            CsvTable::parse(&new).unwrap(),
-        );
-        let c = compare("fig.csv", &b, &n, 1e-5, 1e-9);
-        assert_eq!(c.roles.x.as_deref(), Some("a_over_lambda"));
-        assert_eq!(c.roles.keys, ["aspect_ratio", "tau_max_mpa"]);
-        let moved: Vec<&PanelChange> = c.panels.iter().filter(|p| p.moved()).collect();
-        assert_eq!(moved.len(), 1);
-        assert_eq!(moved[0].panel, "aspect_ratio 0.3, tau_max_mpa 0.2");
-        let col = &moved[0].columns[0];
-        assert_eq!(col.column, "p_over_estar_wnl");
-        assert!((col.max_abs - 0.05).abs() < 1e-12 && (col.max_rel - 0.1).abs() < 1e-12);
-        let md = summary("fig", std::slice::from_ref(&c), &[]);
-        assert!(
-            md.contains(
-                "| aspect_ratio 0.3, tau_max_mpa 0.2 **moved** | p_over_estar_wnl | 0.05 | 0.1 |"
-            ),
-            "{md}"
-        );
-        let fig = overlay("fig", &[("fig.csv".into(), b, n, c)]).unwrap();
-        assert_eq!(fig.panels.len(), 2);
-        assert_eq!(fig.panels[1].series.len(), 2);
-    }
-
-    #[test]
-    fn curves_are_compared_at_the_same_abscissa() {
-        // the new curve's points moved along x: the base is interpolated to them
-        let base = CsvTable::parse("a_over_lambda,p\n0,0\n1,1\n").unwrap();
-        let new = CsvTable::parse("a_over_lambda,p\n0.5,0.5\n").unwrap();
-        let c = compare("t.csv", &base, &new, 1e-5, 0.0);
-        assert!(!c.moved() || c.panels[0].rows_removed == 1);
-        assert_eq!(c.panels[0].columns[0].max_abs, 0.0);
-    }
-
-    #[test]
-    fn within_tolerance_is_not_moved() {
-        let new = BASE.replace("0.3,0.2,0.25,0.5,", "0.3,0.2,0.25,0.500001,");
-        let c = compare(
-            "fig.csv",
-            &CsvTable::parse(BASE).unwrap(),
-            &CsvTable::parse(&new).unwrap(),
-            1e-5,
-            0.0,
-        );
-        assert!(!c.moved());
-        assert!(c
-            .panels
-            .iter()
-            .any(|p| p.columns.iter().any(|c| c.max_abs > 0.0)));
-    }
 }
