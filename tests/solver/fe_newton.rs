@@ -171,7 +171,7 @@ fn a_frictional_curve_steps_node_by_node_whatever_the_target_advance() {
 fn a_thin_layers_retried_events_are_predicted_to_the_event() {
     let problem = LayerProblem {
         thickness_over_lambda: 0.25,
-        interface: Interface::coulomb_orowan(1.0, 0.2, 0.005),
+        interface: Interface::coulomb_orowan(1.0, 0.2, wavy::defaults::elastic_slip_over_element()),
         ..wavy::defaults::layer_problem(0.3)
     };
     let opts = SolveOptions {
