@@ -21,12 +21,19 @@ fn curve(problem: &LayerProblem, opts: &SolveOptions) -> Curve {
         .unwrap_or_else(|f| panic!("{problem:?}: {}", f.error))
 }
 
-/// AR 0.3 with Coulomb–Orowan friction: τ_max/E* 0.1, μ 1, the default stick band.
-fn frictional_ar_0_3() -> LayerProblem {
+/// Aspect ratio `aspect_ratio` with Coulomb–Orowan friction: `τ_max/E*` as given, μ 1, the
+/// default stick band.
+fn frictional(aspect_ratio: f64, tau_max_over_estar: f64) -> LayerProblem {
+    let slip = wavy::defaults::elastic_slip_over_element();
     LayerProblem {
-        interface: Interface::coulomb_orowan(1.0, 0.1, 0.005),
-        ..wavy::defaults::layer_problem(0.3)
+        interface: Interface::coulomb_orowan(1.0, tau_max_over_estar, slip),
+        ..wavy::defaults::layer_problem(aspect_ratio)
     }
+}
+
+/// AR 0.3 with τ_max/E* 0.1 ([`frictional`]).
+fn frictional_ar_0_3() -> LayerProblem {
+    frictional(0.3, 0.1)
 }
 
 /// The default options on `mesh` to a/λ `until`, with load steps that target `da_target` in a/λ.
@@ -171,8 +178,7 @@ fn a_frictional_curve_steps_node_by_node_whatever_the_target_advance() {
 fn a_thin_layers_retried_events_are_predicted_to_the_event() {
     let problem = LayerProblem {
         thickness_over_lambda: 0.25,
-        interface: Interface::coulomb_orowan(1.0, 0.2, wavy::defaults::elastic_slip_over_element()),
-        ..wavy::defaults::layer_problem(0.3)
+        ..frictional(0.3, 0.2)
     };
     let opts = SolveOptions {
         mesh: MeshLevel::along_face(32),
