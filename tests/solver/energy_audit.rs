@@ -105,14 +105,16 @@ fn without_friction_the_face_does_no_work() {
 }
 
 /// With friction (`τ_max/E*` 0.05, exact stick) every point of the loop accounts for the load's
-/// work to the quadrature's error: measured at most 6.34e-3 of the loop's dissipation along loading
-/// (asserted 7.3e-3), 3.80e-3 along unloading with one unloading step per loading step and 7.86e-3
-/// with four (asserted 4.4e-3 and 9e-3). The load's work is the trapezoid rule on the points, the
+/// work to the quadrature's error: measured at most 7.79e-3 of the loop's dissipation along loading
+/// (asserted 9e-3), 7.03e-3 along unloading with one unloading step per loading step and 1.10e-2
+/// with four (asserted 8e-3 and 1.25e-2). The load's work is the trapezoid rule on the points, the
 /// face's work is summed over the committed steps, the points and the sub-steps of the events whose
 /// first try failed, so the gap is the two quadratures' difference and moves with the solver's
-/// steps: with the pressure iterate and before the retried event was predicted afresh it measured
-/// 6.9e-3, 6.2e-3 and 1.0e-2, before the pressure iterate (11 committed sub-steps) 2.8e-3, 7.9e-3
-/// and 1.9e-3 (docs/verification.md, "The energy audit"). The last point is the closed loop,
+/// steps: since friction's pieces are read from the pressure iterate's forces the events that
+/// committed sub-steps before converge from their first try, and the face's work is summed over
+/// fewer steps (the points' p̄ are those of before to 1e-11); with those sub-steps it measured
+/// 6.34e-3, 3.80e-3 and 7.86e-3, before the pressure iterate (11 committed sub-steps) 2.8e-3, 7.9e-3 and 1.9e-3
+/// (docs/verification.md, "The energy audit"). The last point is the closed loop,
 /// where the face's work is the dissipation. The finer steps sample the unloading branch without
 /// moving it: where both runs have a point (the loading points' displacements), p̄ agrees within
 /// 1.2e-7 of the peak p̄ (asserted 1e-6; Newton stops at a residual of 1e-10 of the largest nodal
@@ -132,9 +134,9 @@ fn the_face_and_the_layer_account_for_the_work_of_the_load() {
     eprintln!(
         "largest gap over the dissipation: loading {loading:.2e}; unloading {unloading_coarse:.2e} (1 step per loading step), {unloading_fine:.2e} (4)"
     );
-    assert!(loading <= 7.3e-3, "loading: {loading:e}");
+    assert!(loading <= 9e-3, "loading: {loading:e}");
     assert!(
-        unloading_coarse <= 4.4e-3 && unloading_fine <= 9e-3,
+        unloading_coarse <= 8e-3 && unloading_fine <= 1.25e-2,
         "unloading: {unloading_coarse:e} (1 step), {unloading_fine:e} (4 steps)"
     );
     let end = fine.last().expect("a point");

@@ -223,8 +223,11 @@ fn face_shear_is_bounded_by_the_shear_strength_and_zero_on_symmetry_lines() {
         "largest |τ|/E* on the face {largest:e}, τ_max/E* {}",
         law.tau_max_over_estar
     );
+    // the shear is the node's tangential reaction over ℓ, the friction force to the residual
+    // Newton stops at (`residual_rtol` 1e-10 of the largest element nodal force): measured
+    // 1.03e-8 of τ_max above it on this mesh
     assert!(
-        largest <= law.tau_max_over_estar * (1.0 + 1e-9),
+        largest <= law.tau_max_over_estar * (1.0 + 5e-8),
         "{largest:e}"
     );
     assert!(

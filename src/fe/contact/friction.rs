@@ -186,6 +186,36 @@ pub(in crate::fe) enum Regime {
     Orowan,
 }
 
+/// The normal force `N` of one active node at a Newton iterate, from two sets of internal
+/// forces. `residual`: the displacement method's, with each element's pressure `κ (v/V − 1)`
+/// of the current positions, from which the residual and the Newton step are formed.
+/// `iterate`: the mixed method's, with the element pressures of the iterate
+/// ([`crate::fe::model::mixed_pressure`]). The two agree at a converged state; away from it
+/// the first carries `κ` times the error of the current element areas (at a full Newton step
+/// of the nearly incompressible layer, residuals 10–150 times the iterate's), the second does
+/// not. Which piece of the law a node is on (open, Coulomb or Orowan) is read from the
+/// iterate's, as the mixed method's Newton step linearises it; the Coulomb threshold `μ N`
+/// that enters the residual is the residual's, since the mixed step's right-hand side,
+/// condensed, is the displacement method's (docs/performance.md, "friction's pieces from
+/// the iterate's forces").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(in crate::fe) struct NormalForce {
+    /// From the displacement method's forces.
+    pub(in crate::fe) residual: f64,
+    /// From the pressure iterate's forces (the residual's where there is no iterate).
+    pub(in crate::fe) iterate: f64,
+}
+
+impl NormalForce {
+    /// The normal force of a state without a pressure iterate.
+    pub(in crate::fe) fn converged(normal: f64) -> Self {
+        Self {
+            residual: normal,
+            iterate: normal,
+        }
+    }
+}
+
 /// Friction force of one active node and what its derivatives need.
 #[derive(Clone, Copy, Debug)]
 pub(in crate::fe) struct FrictionEval {
@@ -238,7 +268,8 @@ impl FrictionLaw {
     /// `slope`, `curvature`: `y_s'`, `y_s''` under the node; `history`: the node's
     /// history and its trial elastic slip `e*` ([`SlipHistory::trial_elastic_slip`]);
     /// `node`, `neighbours`: current positions of the node and of its previous and next
-    /// contact-face neighbours (if any); `normal`: the normal force `N`. Under exact stick
+    /// contact-face neighbours (if any); `normal`: the normal force `N` ([`NormalForce`]: the
+    /// iterate's decides the regime, the residual's is the Coulomb threshold). Under exact stick
     /// the branch is the held one of the history, and a held node's force is its reaction,
     /// which the residual row replaces (`force` 0 here).
     pub(in crate::fe) fn eval(
@@ -247,7 +278,7 @@ impl FrictionLaw {
         (history, trial_slip): (&SlipHistory, f64),
         node: [f64; 2],
         neighbours: [Option<[f64; 2]>; 2],
-        normal: f64,
+        normal: NormalForce,
     ) -> FrictionEval {
         let w = (1.0 + slope * slope).sqrt();
         let branch = match self.exact_stick() {
@@ -271,12 +302,14 @@ impl FrictionLaw {
         }
     }
 
-    /// Regime and threshold `L = min(μ N, τ_max ℓ)` (none when `N ≤ 0`).
-    fn threshold(&self, normal: f64, ell: f64) -> (Regime, f64) {
-        if normal <= 0.0 {
+    /// Regime and threshold `L = min(μ N, τ_max ℓ)` (none when `N ≤ 0`): the regime by the
+    /// iterate's normal force, the Coulomb threshold `μ N` by the residual's
+    /// ([`NormalForce`]).
+    fn threshold(&self, normal: NormalForce, ell: f64) -> (Regime, f64) {
+        if normal.iterate <= 0.0 {
             (Regime::Open, 0.0)
-        } else if self.mu * normal <= self.tau_max * ell {
-            (Regime::Coulomb, self.mu * normal)
+        } else if self.mu * normal.iterate <= self.tau_max * ell {
+            (Regime::Coulomb, self.mu * normal.residual)
         } else {
             (Regime::Orowan, self.tau_max * ell)
         }
@@ -489,8 +522,39 @@ mod tests {
             law.commit(None, 0.25, &before),
             (SlipHistory::fresh(0.25), -0.1 * law.slip_c)
         );
-        assert_eq!(law.threshold(-1.0, 0.02), (Regime::Open, 0.0));
-        assert_eq!(law.threshold(1e-3, 0.02), (Regime::Coulomb, 0.5 * 1e-3));
-        assert_eq!(law.threshold(1.0, 0.02), (Regime::Orowan, 0.1 * 0.02));
+        let converged = NormalForce::converged;
+        assert_eq!(law.threshold(converged(-1.0), 0.02), (Regime::Open, 0.0));
+        assert_eq!(
+            law.threshold(converged(1e-3), 0.02),
+            (Regime::Coulomb, 0.5 * 1e-3)
+        );
+        assert_eq!(
+            law.threshold(converged(1.0), 0.02),
+            (Regime::Orowan, 0.1 * 0.02)
+        );
+    }
+
+    /// At an iterate the regime is the iterate's normal force's and the Coulomb threshold the
+    /// residual's ([`NormalForce`]): a node the residual reads as tensile is on the Coulomb
+    /// piece, with a negative threshold, where the iterate presses it; one the iterate reads as
+    /// tensile is open whatever the residual says.
+    #[test]
+    fn the_iterate_decides_the_regime_and_the_residual_the_threshold() {
+        let law = FrictionLaw {
+            mu: 0.5,
+            tau_max: 0.1,
+            slip_c: 1e-3,
+            hold_stiffness: 1.0,
+        };
+        let at = |residual, iterate| NormalForce { residual, iterate };
+        assert_eq!(
+            law.threshold(at(-2e-3, 1e-3), 0.02),
+            (Regime::Coulomb, -1e-3)
+        );
+        assert_eq!(law.threshold(at(1e-3, -1e-3), 0.02), (Regime::Open, 0.0));
+        assert_eq!(
+            law.threshold(at(1e-3, 1.0), 0.02),
+            (Regime::Orowan, 0.1 * 0.02)
+        );
     }
 }

@@ -10,8 +10,10 @@
 //! predicted along the load path from its own derivatives, which are free of that `κ`.
 //!
 //! The residual is the displacement method's, `∂Π/∂x` with `κ (v/V − 1)`, whatever the pressure
-//! iterate: the two methods share their equations and their converged states, and the iterate
-//! only changes the tangent a Newton step is solved with.
+//! iterate: the two methods share their equations and their converged states. The iterate
+//! changes the tangent a Newton step is solved with, the piece of the friction law each node is
+//! on ([`crate::fe::contact::friction::NormalForce`]), and what the line search of a pass after
+//! an active-set change measures ([`crate::fe::newton::mixed_residual`]).
 
 use crate::fe::model::element::{area_gradient, shoelace};
 use crate::fe::model::{Model, Role, State};
@@ -54,6 +56,55 @@ impl Model {
             self.mat.kappa * (shoelace(&x) / area - 1.0),
             area_gradient(&x),
         )
+    }
+
+    /// The internal forces `∂Π/∂x` of `st` with each element's volumetric force taken at the
+    /// pressure iterate instead of `κ (v/V − 1)`: `grad` (the displacement method's) less
+    /// `(κ (v/V − 1) − p) ∇v` per element. The mixed method's forces, free of `κ` times the
+    /// error of the current areas; the friction law reads its pieces from them
+    /// ([`crate::fe::contact::friction::NormalForce`]). `None` without an iterate.
+    pub(crate) fn iterate_forces(&self, st: &State, grad: &[f64]) -> Option<Vec<f64>> {
+        let iterate = st.pressure.as_ref()?;
+        let mut forces = grad.to_vec();
+        for (e, &p) in iterate.iter().enumerate() {
+            let (condensed, dv) = self.condensed_pressure(st, e);
+            for (a, &n) in self.mesh.quads[e].iter().enumerate() {
+                forces[2 * n] -= dv[2 * a] * (condensed - p);
+                forces[2 * n + 1] -= dv[2 * a + 1] * (condensed - p);
+            }
+        }
+        Some(forces)
+    }
+
+    /// The constraint residual of the mixed method per element, `v/V − 1 − p/κ` (the iterate's
+    /// pressure against the current area), each times `G |∇v|`, so that it reads as a force
+    /// of the size the shear modulus gives a strain error: the part of
+    /// [`crate::fe::newton::mixed_residual`] that the displacement method folds into its
+    /// residual multiplied by `κ` instead. Empty without an iterate.
+    pub(crate) fn iterate_constraint_forces(&self, st: &State) -> Vec<f64> {
+        let Some(iterate) = st.pressure.as_ref() else {
+            return Vec::new();
+        };
+        (iterate.iter().enumerate())
+            .map(|(e, &p)| {
+                let (condensed, dv) = self.condensed_pressure(st, e);
+                let dv_norm = dv.iter().map(|d| d * d).sum::<f64>().sqrt();
+                self.mat.g * (condensed - p) / self.mat.kappa * dv_norm
+            })
+            .collect()
+    }
+
+    /// `st` given a pressure iterate at its own element pressures `κ (v/V − 1)`, where it has
+    /// none, under finite kinematics: the start of a Newton solve from a converged state (the
+    /// pass after an active-set change), whose steps then carry it ([`Self::carry_pressure`]).
+    pub(crate) fn start_pressure_iterate(&self, st: &mut State) {
+        if st.pressure.is_some() || self.kin != Kinematics::Finite {
+            return;
+        }
+        let pressure = (0..self.mesh.quads.len())
+            .map(|e| self.condensed_pressure(st, e).0)
+            .collect();
+        st.pressure = Some(pressure);
     }
 
     /// The pressure iterate after the step from `from` to `to` taken at the fraction `alpha`

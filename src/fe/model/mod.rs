@@ -24,7 +24,9 @@ pub mod material;
 pub mod mesh;
 pub mod mixed_pressure;
 
-use crate::fe::contact::friction::{FrictionEval, FrictionLaw, Interface, SlipHistory};
+use crate::fe::contact::friction::{
+    FrictionEval, FrictionLaw, Interface, NormalForce, SlipHistory,
+};
 use crate::fe::contact::indenter::Indenter;
 use crate::fe::model::element::QuadRef;
 use crate::fe::model::material::NeoHooke;
@@ -355,12 +357,15 @@ impl Model {
         h.trial_elastic_slip(self.contact_arc(h.anchor_x, st.x[n][0]))
     }
 
-    /// Friction force of active contact-face node `k` ([`FrictionLaw::eval`]).
+    /// Friction force of active contact-face node `k` ([`FrictionLaw::eval`]), given the
+    /// internal forces `grad` of the residual and, where `st` has a pressure iterate, those of
+    /// the iterate ([`Self::iterate_forces`], `None` otherwise): the regime is the iterate's
+    /// ([`NormalForce`]).
     pub(in crate::fe) fn friction_eval(
         &self,
         st: &State,
         k: usize,
-        grad: &[f64],
+        (grad, iterate): (&[f64], Option<&[f64]>),
         law: &FrictionLaw,
     ) -> FrictionEval {
         let b = &self.mesh.bottom;
@@ -370,7 +375,14 @@ impl Model {
             Kinematics::Linear => 0.0,
         };
         let neighbours = [k.wrapping_sub(1), k + 1].map(|m| b.get(m).map(|&nm| st.x[nm]));
-        let [normal, _] = self.node_contact_force(st, grad, n);
+        let [residual, _] = self.node_contact_force(st, grad, n);
+        let normal = match iterate {
+            Some(g) => NormalForce {
+                residual,
+                iterate: self.node_contact_force(st, g, n)[0],
+            },
+            None => NormalForce::converged(residual),
+        };
         law.eval(
             (self.contact_slope(st, n), curvature),
             (&st.slip[k], self.trial_elastic_slip(st, k)),
@@ -462,7 +474,7 @@ impl Model {
                 if !st.active[k] {
                     return 0.0;
                 }
-                self.friction_eval(st, k, grad, &law).limit
+                self.friction_eval(st, k, (grad, None), &law).limit
             })
             .collect()
     }

@@ -11,7 +11,7 @@
 use crate::fe::error::StepFail;
 use crate::fe::model::{Model, State};
 use crate::fe::newton::assembly::Assembly;
-use crate::fe::newton::{newton, newton_bordered};
+use crate::fe::newton::{newton, newton_bordered, Pass};
 use crate::fe::SolveOptions;
 
 /// Floor of the multiplier scale `max|λ|` of the release test
@@ -57,8 +57,8 @@ pub(crate) fn equilibrate(
     opts: &SolveOptions,
     hold: Hold,
 ) -> Result<usize, StepFail> {
-    active_set_passes(model, asm, st, opts, hold, |model, asm, st, rtol| {
-        newton(model, asm, st, opts, rtol)
+    active_set_passes(model, asm, st, opts, hold, |model, asm, st, pass| {
+        newton(model, asm, st, opts, pass)
     })
 }
 
@@ -80,7 +80,7 @@ pub(crate) fn equilibrate_event(
         st,
         opts,
         Hold::free(Some(node)),
-        |model, asm, st, rtol| newton_bordered(model, asm, st, opts, node, gap_tol, rtol),
+        |model, asm, st, pass| newton_bordered(model, asm, st, opts, node, gap_tol, pass.rtol),
     )
 }
 
@@ -116,19 +116,20 @@ fn active_set_passes(
     st: &mut State,
     opts: &SolveOptions,
     hold: Hold,
-    mut newton_pass: impl FnMut(&Model, &mut Assembly, &mut State, f64) -> Result<usize, StepFail>,
+    mut newton_pass: impl FnMut(&Model, &mut Assembly, &mut State, Pass) -> Result<usize, StepFail>,
 ) -> Result<usize, StepFail> {
     let mut total = 0;
     // Passes whose active set may still change are converged loosely
     // (`loose_residual_rtol`); the pass that confirms the set is converged tightly.
     let mut loose = true;
+    let mut after_change = false;
     for _ in 0..opts.newton.max_active_set_updates {
         let rtol = if loose {
             opts.newton.loose_residual_rtol
         } else {
             opts.newton.residual_rtol
         };
-        total += newton_pass(model, asm, st, rtol)?;
+        total += newton_pass(model, asm, st, Pass { rtol, after_change })?;
         let f = asm.assemble(model, st, false).ok_or(StepFail::Inverted {
             iteration: total,
             residual: f64::NAN,
@@ -151,6 +152,7 @@ fn active_set_passes(
                 changed = true;
             }
         }
+        after_change = changed;
         if !changed {
             if !loose {
                 return Ok(total);

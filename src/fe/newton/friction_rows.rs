@@ -43,11 +43,13 @@ pub(in crate::fe) fn add_friction(
         mut tangent,
     } = sinks;
     let mut worst = 0.0_f64;
+    let iterate = model.iterate_forces(st, grad);
+    let forces = (grad, iterate.as_deref());
     for (k, &n) in model.mesh.bottom.iter().enumerate() {
         if !st.active[k] || map[n][0].is_none() {
             continue;
         }
-        let f = model.friction_eval(st, k, grad, law);
+        let f = model.friction_eval(st, k, forces, law);
         let equilibrium = resid[2 * n];
         let offset = st.x[n][0] - st.slip[k].anchor_x;
         let held = law.exact_stick() && f.branch == Branch::Stick && f.regime != Regime::Open;
@@ -66,7 +68,7 @@ pub(in crate::fe) fn add_friction(
             offset,
             stiffness: law.hold_stiffness,
         });
-        let row = friction_row(model, law, map, (k, &f), grad, &normal_rows[k], held_row);
+        let row = friction_row(model, law, map, (k, &f), forces, &normal_rows[k], held_row);
         let assembled = row.law_row(row.at, law.slip_c);
         match held {
             true => sys.add_to_row(2 * n, 2 * n, assembled.own),
@@ -159,23 +161,30 @@ pub(in crate::fe) struct NormalForceRow {
 
 /// The friction row of active sliding contact-face node `k` under either regime
 /// (formulas in [`crate::fe::contact::friction`]): Coulomb from its normal-force row, Orowan from the
-/// positions of its face neighbours.
+/// positions of its face neighbours. `forces`: the internal forces of the residual and, where
+/// the state has a pressure iterate, of the iterate: the Coulomb row's own entries are the
+/// iterate's (the mixed method's linearisation of `w μ N φ`, whose `δN` condenses onto the
+/// residual's normal-force row), its threshold `w L` the residual's
+/// ([`crate::fe::contact::friction::NormalForce`]).
 fn friction_row(
     model: &Model,
     law: &FrictionLaw,
     map: &SlotMap,
     (k, f): (usize, &FrictionEval),
-    grad: &[f64],
+    (grad, iterate): (&[f64], Option<&[f64]>),
     normal: &NormalForceRow,
     held: Option<HeldRow>,
 ) -> FrictionRow {
     let n = model.mesh.bottom[k];
-    let (own_phi, own_dphi) = f.coulomb_own(law, [grad[2 * n], grad[2 * n + 1]]);
+    let (_, w_limit) = f.coulomb_own(law, [grad[2 * n], grad[2 * n + 1]]);
+    let own_forces = iterate.unwrap_or(grad);
+    let (own_phi, own_dphi) = f.coulomb_own(law, [own_forces[2 * n], own_forces[2 * n + 1]]);
     let mut coulomb_phi = vec![(2 * n, own_phi)];
     coulomb_phi.extend(normal.entries.iter().map(|&(c, v)| (c, law.mu * v)));
     let coulomb = RegimeRow {
         per_phi: coulomb_phi,
-        w_limit: own_dphi,
+        w_limit,
+        per_dphi: own_dphi,
         per_phi_dd: law.mu * normal.dd,
     };
     let cn = map[n][0].expect("sliding slot");
@@ -193,22 +202,27 @@ fn friction_row(
     let orowan = RegimeRow {
         per_phi: orowan_phi,
         w_limit: own_dphi,
+        per_dphi: own_dphi,
         per_phi_dd: 0.0,
     };
     f.row((2 * n, k), (coulomb, orowan), held)
 }
 
 /// The friction part of one active node's tangent row under one regime, per unit `φ` and
-/// `dφ/dx`: `∂(w L φ)/∂q = φ · per_phi + dφ/dx · w_limit e_x`, `∂(w L φ)/∂d = φ · per_phi_dd`
+/// `dφ/dx`: `∂(w L φ)/∂q = φ · per_phi + dφ/dx · per_dphi e_x`, `∂(w L φ)/∂d = φ · per_phi_dd`
 /// (formulas at [`crate::fe::contact::friction`]). `w_limit = w L` is the regime's
 /// threshold times `w` (`μ (g_y − y_s' g_x)` in the Coulomb regime, `w τ_max ℓ` in the
-/// Orowan one), and `per_phi` its derivative: the linearisation of `w L`.
+/// Orowan one), and `per_phi` its derivative: the linearisation of `w L`. `per_dphi` is
+/// `w L` too, read from the pressure iterate's forces where the state has one
+/// ([`friction_row`]).
 #[derive(Clone, Debug, Default)]
 pub(in crate::fe) struct RegimeRow {
     /// Row entries per unit `φ` (`(column, value)`); the first is the own column.
     pub per_phi: Vec<(usize, f64)>,
-    /// `w L` (the own diagonal entry per unit `dφ/dx`).
+    /// `w L`, the residual's.
     pub w_limit: f64,
+    /// `w L` at the iterate (the own diagonal entry per unit `dφ/dx`).
+    pub per_dphi: f64,
     /// `∂(w L)/∂d`.
     pub per_phi_dd: f64,
 }
@@ -302,7 +316,7 @@ impl FrictionRow {
         let phi_landed = phi.clamp(-1.0, 1.0);
         let (own, others) = r.per_phi.split_first().expect("the own column first");
         LawRow {
-            own: phi_landed * own.1 + dphi * r.w_limit,
+            own: phi_landed * own.1 + dphi * r.per_dphi,
             others: others.iter().map(|&(c, v)| (c, phi_landed * v)).collect(),
             force: phi * r.w_limit,
             force_dd: phi_landed * r.per_phi_dd,
@@ -415,6 +429,7 @@ mod tests {
         let regime_row = |scale: f64| RegimeRow {
             per_phi: vec![(4, 2.0 * scale), (5, -3.0 * scale), (7, 0.5 * scale)],
             w_limit: 0.05 * scale,
+            per_dphi: 0.05 * scale,
             per_phi_dd: 0.7 * scale,
         };
         let at = LawPiece {

@@ -6,7 +6,9 @@
 //! [`crate::fe::model::mixed_pressure`]; each step carries it, a converged state drops it), solved by
 //! [`crate::fe::newton::friction_step`] (the factorisations are described in [`crate::fe::linsys`]), and one
 //! backtracking [`line_search`]: on the energy `Π` (Armijo) or, if the Newton direction is
-//! not a descent direction or the problem has friction, on a residual merit. Inverted trial
+//! not a descent direction or the problem has friction, on a residual merit (in a frictional
+//! pass after an active-set change, the mixed method's residual,
+//! [`crate::fe::newton::mixed_residual`]). Inverted trial
 //! configurations (`J ≤ 0`) are backtracked. Convergence: `‖r‖∞ ≤ rtol · f_e + atol`, `f_e`
 //! the largest element-level nodal force (the round-off scale of the assembled residual) and
 //! `atol = residual_atol · (G + κ) λ`; an iteration whose correction is below
@@ -19,19 +21,17 @@ pub mod active_set;
 pub mod assembly;
 pub mod friction_rows;
 pub mod friction_step;
+pub mod line_search;
+pub mod mixed_residual;
 
 use crate::fe::contact::friction::Branch;
 use crate::fe::error::StepFail;
 use crate::fe::model::{Model, State};
 use crate::fe::newton::assembly::{Assembly, Forces};
 use crate::fe::newton::friction_step::solve_newton_step;
+use crate::fe::newton::line_search::{line_search, Decrease};
+use crate::fe::newton::mixed_residual::mixed_residual_norm;
 use crate::fe::{Kinematics, SolveOptions};
-
-/// Sufficient-decrease constant `c` of the backtracking line search, in the energy
-/// Armijo test `Π(α) ≤ Π₀ + c α r·δ` and in the merit test `m(α) < (1 − c α) m₀`: the
-/// customary value (Nocedal & Wright, *Numerical Optimization*, §3.1), small enough that
-/// the full Newton step passes wherever Newton converges.
-const ARMIJO_C: f64 = 1e-4;
 
 /// A Newton correction this small (`∞`-norm, units of λ: a millionth of a millionth of the
 /// wavelength) carries no information once the residual has stopped falling: it is the
@@ -54,16 +54,6 @@ const ROUND_OFF_RESIDUAL_FACTOR: f64 = 100.0;
 fn at_round_off_floor(dq_norm: f64, res: f64, prev: f64, tol: f64) -> bool {
     dq_norm <= ROUND_OFF_INCREMENT && res > 0.5 * prev && res <= ROUND_OFF_RESIDUAL_FACTOR * tol
 }
-
-/// Slack of the energy Armijo test relative to `|Π₀|`. Round-off argument: `Π` is a sum
-/// of ~10³ element energies (1152 on the default mesh), each exact to about one ulp, so it
-/// carries a relative error up to `N ε ≈ 10⁻¹³`; near convergence the energy change of a
-/// correct step drops below that and would be rejected without the slack.
-const ENERGY_ROUNDOFF_SLACK: f64 = 1e-13;
-
-/// Step-length factor per backtracking step (halving: [`NewtonOptions::max_line_search`]
-/// and [`NewtonOptions::max_edge_line_search`] count halvings).
-const LINE_SEARCH_BACKTRACK: f64 = 0.5;
 
 /// Residual bound of Newton convergence, `rtol · f_e + residual_atol · (G + κ)`, with
 /// `force_scale = f_e` the largest element-level nodal force.
@@ -108,67 +98,6 @@ fn stepped(
     trial
 }
 
-/// What a line-search trial must decrease.
-pub(crate) enum Decrease<'a> {
-    /// The energy, Armijo: `Π(α) ≤ Π₀ + c α slope + ε |Π₀|` with `slope = r·δ < 0`
-    /// ([`ARMIJO_C`], [`ENERGY_ROUNDOFF_SLACK`]).
-    Energy {
-        /// `Π₀`.
-        initial: f64,
-        /// Directional derivative `r·δ` of the energy along the step.
-        slope: f64,
-    },
-    /// A merit `m(trial, forces)`: `m(α) < (1 − c α) m₀`.
-    Merit {
-        /// `m₀`.
-        initial: f64,
-        /// The merit of a trial state given its forces.
-        merit: &'a dyn Fn(&Model, &State, &Forces) -> f64,
-    },
-    /// Nothing: the step is exact (quadratic energy); the first non-inverted trial is
-    /// taken.
-    Exact,
-}
-
-impl Decrease<'_> {
-    fn accepts(&self, model: &Model, trial: &State, forces: &Forces, alpha: f64) -> bool {
-        match self {
-            Decrease::Energy { initial, slope } => {
-                forces.energy
-                    <= initial + ARMIJO_C * alpha * slope + ENERGY_ROUNDOFF_SLACK * initial.abs()
-            }
-            Decrease::Merit { initial, merit } => {
-                merit(model, trial, forces) < (1.0 - ARMIJO_C * alpha) * initial
-            }
-            Decrease::Exact => true,
-        }
-    }
-}
-
-/// Backtracking line search: the first of the trial states `trial_at(α)`,
-/// `α = 1, ½, ¼, …` (at most `max_trials`), that is not inverted and satisfies
-/// `decrease`; `None` if there is none. The forces of the accepted state stay cached in
-/// the model for the next convergence check.
-pub(crate) fn line_search(
-    model: &Model,
-    asm: &mut Assembly,
-    max_trials: usize,
-    trial_at: impl Fn(&Model, f64) -> State,
-    decrease: Decrease<'_>,
-) -> Option<State> {
-    let mut alpha = 1.0;
-    for _ in 0..max_trials {
-        let trial = trial_at(model, alpha);
-        if let Some(f) = asm.assemble(model, &trial, false) {
-            if decrease.accepts(model, &trial, &f, alpha) {
-                return Some(trial);
-            }
-        }
-        alpha *= LINE_SEARCH_BACKTRACK;
-    }
-    None
-}
-
 /// A failed iteration when the caller asked the solve to stop ([`crate::fe::interrupt`]): read
 /// before each iteration, so a solve stops within one iteration; the failure ends the solve,
 /// which the caller that set the flag reports as interrupted.
@@ -183,18 +112,37 @@ fn interrupted(iteration: usize, residual: f64) -> Result<(), StepFail> {
     }
 }
 
-/// Newton iterations at a fixed active set. Returns the number of iterations.
+/// One Newton pass of the active-set loop ([`crate::fe::newton::active_set`]): its residual
+/// tolerance, and whether the active set changed before it (the pass then starts from the
+/// converged state of the pass before).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Pass {
+    /// Relative residual tolerance.
+    pub(crate) rtol: f64,
+    /// The pass follows an active-set change.
+    pub(crate) after_change: bool,
+}
+
+/// Newton iterations at a fixed active set, to the residual tolerance of `pass`. Returns the
+/// number of iterations. With friction, a pass after an active-set change starts from a
+/// converged state, which has no pressure iterate: it is given one at its own pressures, and its
+/// line search measures the residual in the mixed method's variables
+/// ([`crate::fe::newton::mixed_residual`]).
 pub(crate) fn newton(
     model: &Model,
     asm: &mut Assembly,
     st: &mut State,
     opts: &SolveOptions,
-    rtol: f64,
+    pass: Pass,
 ) -> Result<usize, StepFail> {
+    let rtol = pass.rtol;
     let mut last_res = f64::NAN;
     let mut last_step = f64::INFINITY;
+    let mixed_merit = pass.after_change && !model.is_potential() && opts.newton.pressure_iterate;
     if !opts.newton.pressure_iterate {
         st.pressure = None;
+    } else if mixed_merit {
+        model.start_pressure_iterate(st);
     }
     for it in 0..=opts.newton.max_iterations {
         interrupted(it, last_res)?;
@@ -246,7 +194,10 @@ pub(crate) fn newton(
             continue;
         }
         let slope: f64 = f.resid.iter().zip(&dq).map(|(r, d)| r * d).sum();
-        let residual_norm = |_: &Model, _: &State, ft: &Forces| l2_norm(&ft.resid);
+        let residual_norm = |m: &Model, t: &State, ft: &Forces| match mixed_merit {
+            true => mixed_residual_norm(m, t, ft),
+            false => l2_norm(&ft.resid),
+        };
         let decrease = if slope < 0.0 && model.is_potential() {
             Decrease::Energy {
                 initial: f.energy,
@@ -254,7 +205,7 @@ pub(crate) fn newton(
             }
         } else {
             Decrease::Merit {
-                initial: l2_norm(&f.resid),
+                initial: residual_norm(model, st, &f),
                 merit: &residual_norm,
             }
         };

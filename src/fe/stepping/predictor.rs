@@ -167,7 +167,9 @@ impl SmoothPieces {
         let mut resid = forces.resid;
         if let Some(law) = model.friction {
             for &(row, face) in &self.stuck {
-                resid[row] -= model.friction_eval(trial, face, &forces.grad, &law).force;
+                let iterate = model.iterate_forces(trial, &forces.grad);
+                let forces = (forces.grad.as_slice(), iterate.as_deref());
+                resid[row] -= model.friction_eval(trial, face, forces, &law).force;
             }
         }
         Some(resid)
