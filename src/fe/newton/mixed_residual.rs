@@ -2,12 +2,12 @@
 //! a frictional pass that starts after an active-set change measures.
 //!
 //! The displacement method's residual carries each element's pressure `κ (v/V − 1)` of the
-//! current positions, and with it `κ` times the error of the current element areas: a full Newton
-//! step of the nearly incompressible layer (κ/G 1000) moves the nodes by a fifth of an element,
-//! changes an area by about half the square of that fraction, and the residual at the step's end
-//! is dominated by that term (in the unloading passes measured, 10–150 times the mixed method's
-//! residual at the same state), though the step is the mixed method's Newton step and the next
-//! one removes it. The backtracking line search then cuts the step to ⅛–¼ for many iterations.
+//! current positions, and with it `κ` times the error of the current element areas: an element's
+//! area is quadratic in its nodes, so a full Newton step of the nearly incompressible layer leaves
+//! an area error of the order of the square of the step, and the residual at the step's end is
+//! dominated by `κ` times it (docs/performance.md measures by how much), though the step is the
+//! mixed method's Newton step and the next one removes it. The backtracking line search then cuts
+//! the step to a fraction for many iterations.
 //! Measured in the mixed method's variables the residual is the displacement equations with the
 //! iterate's pressures (their friction forces read from the same forces,
 //! [`crate::fe::contact::friction::NormalForce`]) and each element's constraint
