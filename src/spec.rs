@@ -91,9 +91,8 @@ pub struct FeSection {
     /// Friction coefficient μ of the Coulomb–Orowan law (docs/replication.md R7; default 1 in `crate::defaults`).
     #[serde(default = "default_friction_coefficient")]
     pub friction_coefficient: Bounded<NonNegative>,
-    /// Elastic slip at the friction threshold over the mean element length along the contact
-    /// face: 0 (the default) is exact stick, > 0 the penalty regularisation of stick (0.005 is
-    /// Abaqus's default).
+    /// Penalty regularisation of stick: elastic slip at the friction threshold over the mean
+    /// element length along the contact face (default 0.005, Abaqus's; 0 is exact stick).
     #[serde(default = "default_elastic_slip_over_element")]
     pub elastic_slip_over_element: Bounded<NonNegative>,
     /// `finite` (the paper's physics) or `linear` (small strain).

@@ -82,7 +82,7 @@ def solve(
     elastic_slip_over_element : float, optional
         Elastic slip at which friction is fully mobilised, over the face element length,
         >= 0 (0 = exact stick: a stuck node is held and its friction force is the reaction;
-        > 0 = penalty-regularised stick, 0.005 Abaqus's default). Default None: 0.0.
+        > 0 = penalty-regularised stick). Default None: 0.005.
     estar_mpa : float, optional
         Plane-strain modulus E* of the layer in MPa, > 0 (τ_max/E* is what the physics
         sees). Default None: 1.0.

@@ -13,10 +13,9 @@
 //! L = min(μ N, τ_max ℓ)
 //! ```
 //!
-//! Stick is exact by default (below); with `e_c > 0` it is regularised as in penalty
-//! friction: the tangential force grows with the *elastic slip* `e` and reaches the threshold
-//! at `e_c` (a small fraction of the element size,
-//! [`CoulombOrowan::elastic_slip_over_element`]). Return mapping, per load step,
+//! Stick is regularised as in penalty friction: the tangential force grows with the
+//! *elastic slip* `e` and reaches the threshold at `e_c` (a small fraction of the element
+//! size, [`CoulombOrowan::elastic_slip_over_element`]). Return mapping, per load step,
 //! from the committed history `(e_n, S_n)` (elastic slip and arc-length position on the
 //! indenter at the last converged step, [`SlipHistory`]):
 //!
@@ -28,7 +27,7 @@
 //!
 //! and on convergence `e_{n+1} = e_c φ`, `S_{n+1} = S(x)`.
 //!
-//! # Exact stick (`e_c = 0`, the default)
+//! # Exact stick (`e_c = 0`)
 //! With no elastic slip, stick is a constraint: a *held* node stays at its anchor (where the
 //! last converged step left it) and its friction force is the reaction `T = −(c·g)/w`, which
 //! the law bounds by `|T| ≤ L`; a *sliding* node has `T = −L φ`, `φ = ±1`, and slides the way
@@ -107,8 +106,7 @@ impl Interface {
     }
 }
 
-/// Coulomb–Orowan friction, `τ_sl = min(μ p, τ_max)`, with exact or regularised stick
-/// (docs/replication.md R3).
+/// Regularised Coulomb–Orowan friction, `τ_sl = min(μ p, τ_max)` (docs/replication.md R3).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct CoulombOrowan {
     /// Friction coefficient `μ` (> 0).
@@ -116,8 +114,7 @@ pub struct CoulombOrowan {
     /// Interfacial shear strength over the plane-strain modulus, `τ_max/E*` (> 0).
     pub tau_max_over_estar: f64,
     /// Elastic slip at which the full threshold is mobilised, over the mean element length
-    /// along the contact face (≥ 0): 0 is exact stick, > 0 the penalty law (Abaqus's penalty
-    /// friction uses 0.005 by default).
+    /// along the contact face (> 0). Abaqus's penalty friction uses 0.005 by default.
     pub elastic_slip_over_element: f64,
 }
 
