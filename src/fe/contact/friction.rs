@@ -237,6 +237,15 @@ pub(in crate::fe) struct FrictionEval {
     pub force: f64,
 }
 
+impl FrictionEval {
+    /// Whether exact stick holds this node at its anchor: stuck and not open. Its equation is
+    /// then the constraint `k (x − x_anchor)` instead of its equilibrium (the friction force is
+    /// the reaction); under the penalty law no node is held.
+    pub(in crate::fe) fn held(&self, law: &FrictionLaw) -> bool {
+        law.exact_stick() && self.branch == Branch::Stick && self.regime != Regime::Open
+    }
+}
+
 impl FrictionLaw {
     /// The law of `interface` in solver units: `τ_max/G = (τ_max/E*) (E*/G)` with the
     /// material's `E*/G`, and `e_c` the given fraction of the mean element length

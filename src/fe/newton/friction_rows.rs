@@ -52,7 +52,7 @@ pub(in crate::fe) fn add_friction(
         let f = model.friction_eval(st, k, forces, law);
         let equilibrium = resid[2 * n];
         let offset = st.x[n][0] - st.slip[k].anchor_x;
-        let held = law.exact_stick() && f.branch == Branch::Stick && f.regime != Regime::Open;
+        let held = f.held(law);
         worst = worst.max(complementarity(law, &f, equilibrium));
         resid[2 * n] = match held {
             true => law.hold_stiffness * offset,

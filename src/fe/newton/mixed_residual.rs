@@ -17,7 +17,6 @@
 //! predictor, where the displacement residual's merit measured fewer iterations
 //! (docs/performance.md, "friction's pieces from the iterate's forces").
 
-use crate::fe::contact::friction::{Branch, Regime};
 use crate::fe::model::{Model, State};
 use crate::fe::newton::assembly::Forces;
 
@@ -28,12 +27,28 @@ pub(crate) fn mixed_residual_norm(model: &Model, st: &State, forces: &Forces) ->
         return forces.resid.iter().map(|r| r * r).sum::<f64>().sqrt();
     };
     let map = model.slot_map(st);
-    let held = held_slots(model, st, forces, &iterate);
     let mut resid = forces.resid.clone();
+    // a node that exact stick holds keeps its constraint row, which no pressure enters; the
+    // others' friction forces are read from the iterate's forces
+    let mut held = vec![false; resid.len()];
+    let mut friction_change = Vec::new();
+    if let Some(law) = model.friction {
+        for (k, &n) in model.mesh.bottom.iter().enumerate() {
+            if !st.active[k] || map[n][0].is_none() {
+                continue;
+            }
+            let in_residual = model.friction_eval(st, k, (&forces.grad, Some(&iterate)), &law);
+            held[2 * n] = in_residual.held(&law);
+            if !held[2 * n] {
+                let on_iterate = model.friction_eval(st, k, (&iterate, None), &law);
+                friction_change.push((2 * n, on_iterate.force - in_residual.force));
+            }
+        }
+    }
     for (n, slots) in map.iter().enumerate() {
         for (s, slot) in slots.iter().enumerate() {
             let Some(c) = slot else { continue };
-            if held.contains(&(2 * n + s)) {
+            if held[2 * n + s] {
                 continue;
             }
             let dx = forces.grad[2 * n] - iterate[2 * n];
@@ -41,35 +56,10 @@ pub(crate) fn mixed_residual_norm(model: &Model, st: &State, forces: &Forces) ->
             resid[2 * n + s] -= c[0] * dx + c[1] * dy;
         }
     }
-    if let Some(law) = model.friction {
-        for (k, &n) in model.mesh.bottom.iter().enumerate() {
-            if !st.active[k] || map[n][0].is_none() || held.contains(&(2 * n)) {
-                continue;
-            }
-            let on_iterate = model.friction_eval(st, k, (&iterate, None), &law).force;
-            let in_residual =
-                (model.friction_eval(st, k, (&forces.grad, Some(&iterate)), &law)).force;
-            resid[2 * n] += on_iterate - in_residual;
-        }
+    for (row, change) in friction_change {
+        resid[row] += change;
     }
     let constraint = model.iterate_constraint_forces(st);
     let squares: f64 = resid.iter().chain(&constraint).map(|r| r * r).sum();
     squares.sqrt()
-}
-
-/// The sliding slots of the nodes that exact stick holds at their anchors: their equation is
-/// the constraint `k (x − x_anchor)`, which no pressure enters.
-fn held_slots(model: &Model, st: &State, forces: &Forces, iterate: &[f64]) -> Vec<usize> {
-    let Some(law) = model.friction.filter(|law| law.exact_stick()) else {
-        return Vec::new();
-    };
-    let forces = (forces.grad.as_slice(), Some(iterate));
-    (model.mesh.bottom.iter().enumerate())
-        .filter(|&(k, _)| st.active[k])
-        .filter(|&(k, _)| {
-            let f = model.friction_eval(st, k, forces, &law);
-            f.branch == Branch::Stick && f.regime != Regime::Open
-        })
-        .map(|(_, &n)| 2 * n)
-        .collect()
 }

@@ -166,9 +166,9 @@ impl SmoothPieces {
         let forces = asm.assemble(model, trial, false)?;
         let mut resid = forces.resid;
         if let Some(law) = model.friction {
+            let iterate = model.iterate_forces(trial, &forces.grad);
+            let forces = (forces.grad.as_slice(), iterate.as_deref());
             for &(row, face) in &self.stuck {
-                let iterate = model.iterate_forces(trial, &forces.grad);
-                let forces = (forces.grad.as_slice(), iterate.as_deref());
                 resid[row] -= model.friction_eval(trial, face, forces, &law).force;
             }
         }
