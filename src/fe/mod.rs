@@ -264,7 +264,13 @@ fn validate_profile(
 /// Build the discrete model for a problem (exposed for tests and diagnostics).
 pub fn build_model(problem: &LayerProblem, opts: &SolveOptions) -> model::Model {
     let (nx, ny) = opts.mesh.counts();
-    let mesh = model::mesh::Mesh::graded(nx, ny, problem.thickness_over_lambda, opts.grading);
+    let profile = problem.profile();
+    // the stretch under a steep peak is finite kinematics' (model::mesh::Grading::for_sinusoid)
+    let grading = match profile.is_sinusoid() && problem.kinematics == Kinematics::Finite {
+        true => opts.grading.for_sinusoid(profile.aspect_ratio),
+        false => opts.grading,
+    };
+    let mesh = model::mesh::Mesh::graded(nx, ny, problem.thickness_over_lambda, grading);
     let mat = model::material::NeoHooke {
         g: 1.0,
         kappa: problem.kappa_over_g,
@@ -273,9 +279,7 @@ pub fn build_model(problem: &LayerProblem, opts: &SolveOptions) -> model::Model 
         mesh,
         mat,
         problem.kinematics,
-        contact::indenter::Indenter {
-            profile: problem.profile(),
-        },
+        contact::indenter::Indenter { profile },
         problem.interface,
         model::Lateral::Symmetric,
     )

@@ -117,7 +117,7 @@ fn robustness_grid_at_ar_0_2() {
 }
 
 /// Where the coarse layer loses stability, the solver says so: the frictionless AR 0.3 and 0.4
-/// curves on [`MESH`] face elements stop short of a/λ 0.45 (at d/λ 0.288 and 0.267,
+/// curves on [`MESH`] face elements stop short of a/λ 0.45 (at d/λ 0.288 and 0.312,
 /// docs/verification.md) with a Newton failure whose message names the indefinite tangent and
 /// the finer mesh, and the AR 0.3 curve on 32 elements, where the layer holds, completes.
 #[test]
@@ -142,6 +142,17 @@ fn a_coarse_layer_losing_stability_is_named_in_the_message() {
         "AR 0.3 on 32 elements: {:?}",
         complete.err().map(|f| f.to_string())
     );
+}
+
+/// A sinusoid steeper than the paper's range has its peak graded finer
+/// (`Grading::for_sinusoid`, docs/replication.md R10): the frictionless AR 0.4 loop on 32 face
+/// elements, which under AR 0.3's grading lost stability while loading (at d/λ 0.325), loads
+/// to a/λ 0.45 and unloads.
+#[test]
+fn a_steep_peak_graded_finer_holds_the_coarse_layer() {
+    let c =
+        cycle_on(&problem(0.4, Interface::Frictionless), 32).expect("the AR 0.4 loop completes");
+    complete_cycle(&c).unwrap();
 }
 
 /// Where unloading with a nearly pure Orowan law (μ 100) stops, the message names the node at

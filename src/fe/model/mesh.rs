@@ -144,7 +144,8 @@ impl std::fmt::Display for MeshLevel {
 /// Grading parameters.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Grading {
-    /// Spacing ratio along the contact face: `ΔX(½) / ΔX(0)` (≥ 1).
+    /// Spacing ratio along the contact face: `ΔX(½) / ΔX(0)` (≥ 1); a single sinusoid steeper
+    /// than AR 0.3 is meshed with more under finite kinematics ([`Grading::for_sinusoid`]).
     pub peak_ratio: f64,
     /// Bottom layer thickness in units of the mean face spacing `½/nx`.
     pub first_layer_over_dx: f64,
@@ -153,6 +154,16 @@ pub struct Grading {
     pub coarsen_at_aspect: f64,
 }
 
+/// The steepest sinusoid whose peak the grading's own `peak_ratio` serves: the paper's range,
+/// AR 0.3 (docs/replication.md R10).
+pub const STEEP_PEAK_FROM_ASPECT_RATIO: f64 = 0.3;
+
+/// How fast the surface stretch under the peak grows with the aspect ratio beyond
+/// [`STEEP_PEAK_FROM_ASPECT_RATIO`]: `d ln s / d AR`, `s` the stretch of the face element at the
+/// peak at a/λ 0.45, measured 2.85 at AR 0.3 and 5.12 at AR 0.4 on 96 face elements (3.74 at
+/// AR 0.35, where this rate predicts 3.82; docs/replication.md R10).
+pub const PEAK_STRETCH_LOG_RATE_PER_ASPECT_RATIO: f64 = 5.86;
+
 impl Grading {
     /// Uniform spacing along the contact face (`peak_ratio` 1), the default layers: the mesh of
     /// a profile whose small waves touch anywhere on the face.
@@ -160,6 +171,25 @@ impl Grading {
         Self {
             peak_ratio: 1.0,
             ..Self::default()
+        }
+    }
+
+    /// The grading of a single sinusoid of aspect ratio `aspect_ratio`. Beyond
+    /// [`STEEP_PEAK_FROM_ASPECT_RATIO`] the peak's element, stretched `s` times along the face
+    /// and as much thinned across it, ends `s²` times flatter than its reference shape, and the
+    /// coarse layer loses stability there (docs/replication.md R10); so `1 + peak_ratio`, to
+    /// which the peak element's height over width is proportional, grows as `s²`
+    /// ([`PEAK_STRETCH_LOG_RATE_PER_ASPECT_RATIO`]) and the stretched element keeps the shape it
+    /// has at AR 0.3 (the default 4 becomes 8.0 at AR 0.35 and 15.1 at AR 0.4).
+    pub fn for_sinusoid(self, aspect_ratio: f64) -> Self {
+        let excess = aspect_ratio - STEEP_PEAK_FROM_ASPECT_RATIO;
+        if excess <= 0.0 {
+            return self;
+        }
+        let stretch_growth_squared = (2.0 * PEAK_STRETCH_LOG_RATE_PER_ASPECT_RATIO * excess).exp();
+        Self {
+            peak_ratio: (1.0 + self.peak_ratio) * stretch_growth_squared - 1.0,
+            ..self
         }
     }
 }
@@ -438,6 +468,26 @@ mod tests {
     }
 
     /// Without coarsening the mesh is the structured grid: node `(i, j)` has id `j (nx+1) + i`.
+    /// Up to AR 0.3 a sinusoid keeps the grading it is given; beyond, `1 + peak_ratio` grows
+    /// as the square of the peak's stretch, for the default and for a uniform face alike.
+    #[test]
+    fn a_steep_sinusoid_grades_its_peak_finer() {
+        for ar in [0.05, 0.2, 0.3] {
+            assert_eq!(Grading::default().for_sinusoid(ar), Grading::default());
+        }
+        let at = |g: Grading, ar: f64| g.for_sinusoid(ar).peak_ratio;
+        assert!((at(Grading::default(), 0.35) - 7.98).abs() < 0.01);
+        assert!((at(Grading::default(), 0.4) - 15.14).abs() < 0.01);
+        let squared = (5.12_f64 / 2.85).powi(2);
+        assert!(((1.0 + at(Grading::default(), 0.4)) / 5.0 / squared - 1.0).abs() < 1e-3);
+        assert!(((1.0 + at(Grading::uniform_face(), 0.4)) / 2.0 / squared - 1.0).abs() < 1e-3);
+        let steep = Grading::default().for_sinusoid(0.4);
+        assert_eq!(
+            steep.first_layer_over_dx,
+            Grading::default().first_layer_over_dx
+        );
+    }
+
     #[test]
     fn uncoarsened_mesh_is_the_structured_grid() {
         let m = Mesh::graded(6, 3, 1.0, Grading::default());
