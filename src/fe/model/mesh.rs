@@ -467,7 +467,6 @@ mod tests {
         }
     }
 
-    /// Without coarsening the mesh is the structured grid: node `(i, j)` has id `j (nx+1) + i`.
     /// Up to AR 0.3 a sinusoid keeps the grading it is given; beyond, `1 + peak_ratio` grows
     /// as the square of the peak's stretch, for the default and for a uniform face alike.
     #[test]
@@ -488,6 +487,7 @@ mod tests {
         );
     }
 
+    /// Without coarsening the mesh is the structured grid: node `(i, j)` has id `j (nx+1) + i`.
     #[test]
     fn uncoarsened_mesh_is_the_structured_grid() {
         let m = Mesh::graded(6, 3, 1.0, Grading::default());
