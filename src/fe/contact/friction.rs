@@ -192,11 +192,12 @@ pub(in crate::fe) enum Regime {
 /// `iterate`: the mixed method's, with the element pressures of the iterate
 /// ([`crate::fe::model::mixed_pressure`]). The two agree at a converged state; away from it
 /// the first carries `κ` times the error of the current element areas (at a full Newton step
-/// of the nearly incompressible layer it dominates the residual), the second does not. Which piece of the law a node is on (open, Coulomb or Orowan) is read from the
-/// iterate's, as the mixed method's Newton step linearises it; the Coulomb threshold `μ N`
-/// that enters the residual is the residual's, since the mixed step's right-hand side,
-/// condensed, is the displacement method's (docs/performance.md, "friction's pieces from
-/// the iterate's forces").
+/// of the nearly incompressible layer it dominates the residual), the second does not. Which
+/// piece of the law a node is on (open, Coulomb or Orowan) is read from the iterate's, as the
+/// mixed method's Newton step linearises it; the Coulomb threshold `μ N` that enters the
+/// residual is the residual's, since the mixed step's right-hand side, condensed, is the
+/// displacement method's (docs/performance.md, "friction's pieces from the iterate's
+/// forces").
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(in crate::fe) struct NormalForce {
     /// From the displacement method's forces.
