@@ -198,6 +198,13 @@ pub struct NewtonOptions {
     /// uses it instead of `κ (v/V − 1)` of the current positions. It changes the Newton path,
     /// not the converged state (docs/performance.md, "the pressure iterate").
     pub pressure_iterate: bool,
+    /// Under the penalty friction law, hold a sliding node that lies beyond its stick band at
+    /// the band's middle in a Newton step that puts it on stick, instead of linearising it on
+    /// the band's spring continued out to where it is ([`crate::fe::newton::friction_step`]).
+    /// It changes the Newton path, not the converged state (test
+    /// `returning_into_the_band_changes_the_path_not_the_curve`; docs/performance.md, "a node
+    /// beyond its band returned to it").
+    pub return_into_band: bool,
 }
 
 impl Default for NewtonOptions {
@@ -214,6 +221,7 @@ impl Default for NewtonOptions {
             semismooth_friction: true,
             stick_decision_stiffness: 1.0,
             pressure_iterate: true,
+            return_into_band: true,
         }
     }
 }

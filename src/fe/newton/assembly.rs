@@ -401,7 +401,8 @@ mod tests {
 
     /// Model `to`'s tangent row, residual and `∂r/∂d` on each friction node, against model
     /// `from`'s switched to `to`'s piece of the law ([`FrictionRow::switched`], with `to`'s
-    /// elastic-slip limit) where `selected` picks the pair; returns how many were compared.
+    /// elastic-slip limit, and without the hold that returns a node beyond its band to it)
+    /// where `selected` picks the pair; returns how many were compared.
     fn compare_switched(
         from: &mut (Model, Assembly, State),
         to: &mut (Model, Assembly, State),
@@ -421,7 +422,11 @@ mod tests {
                 continue;
             }
             compared += 1;
-            let (entries, d_resid, d_resid_dd) = rf.switched(rt.at, slip_c);
+            let spring = FrictionRow {
+                held: None,
+                ..rf.clone()
+            };
+            let (entries, d_resid, d_resid_dd) = spring.switched(rt.at, slip_c);
             let scale = (0..n).fold(0.0_f64, |m, c| m.max(to.sys.get(rt.row, c).abs()));
             for c in 0..n {
                 let extra: f64 = entries.iter().filter(|e| e.0 == c).map(|e| e.1).sum();
@@ -443,13 +448,75 @@ mod tests {
         compared
     }
 
+    /// Under the penalty law a sliding node beyond its stick band, switched to stick, is held
+    /// at its band's middle: its switched row is `k e_x` alone, its switched residual `k (x −
+    /// x_m)`, and at `x_m` its trial elastic slip vanishes to within 10⁻³ e_c (measured
+    /// 7.9·10⁻⁴ e_c, with committed elastic slips of half the band either way). Every sliding
+    /// node of the sheared state beyond its band has the hold, and no node of the wide band does.
+    #[test]
+    fn a_node_beyond_its_band_switched_to_stick_is_held_at_the_band_middle() {
+        let (model, mut asm, mut st) = sheared(50.0, 0.005);
+        let slip_c = model.elastic_slip_limit().expect("friction");
+        // a committed elastic slip, half the band either way, moves the middle off the anchor
+        for (k, h) in st.slip.iter_mut().enumerate() {
+            h.elastic = if k % 2 == 0 { 0.5 } else { -0.5 } * slip_c;
+        }
+        let forces = asm.assemble(&model, &st, true).expect("not inverted");
+        let k = model.friction.expect("friction").hold_stiffness;
+        let n = asm.sys.size();
+        let (mut held, mut largest) = (0, 0.0_f64);
+        for r in &asm.friction_rows {
+            let beyond = r.at.slip != Branch::Stick && r.trial_slip.abs() > slip_c;
+            assert_eq!(r.held.is_some(), beyond, "face node {}", r.face);
+            let Some(hold) = &r.held else { continue };
+            held += 1;
+            let to = LawPiece {
+                slip: Branch::Stick,
+                ..r.at
+            };
+            let (entries, d_resid, _) = r.switched(to, slip_c);
+            let scale = (0..n).fold(k, |m, c| m.max(asm.sys.get(r.row, c).abs()));
+            for c in 0..n {
+                let extra: f64 = entries.iter().filter(|e| e.0 == c).map(|e| e.1).sum();
+                let switched = asm.sys.get(r.row, c) + extra;
+                let expected = if c == r.row { k } else { 0.0 };
+                assert!(
+                    (switched - expected).abs() <= 1e-12 * scale,
+                    "row {}, column {c}: {switched} against {expected}",
+                    r.row
+                );
+            }
+            let resid = forces.resid[r.row] + d_resid;
+            assert!((resid - k * hold.offset).abs() <= 1e-12 * scale * slip_c);
+            let mut middle = st.clone();
+            middle.x[model.mesh.bottom[r.face]][0] -= hold.offset;
+            model.enforce_constraints(&mut middle);
+            let law = model.friction.expect("friction");
+            let at_middle =
+                (model.friction_eval(&middle, r.face, (&forces.grad, None), &law)).trial_slip;
+            // `x_m` takes the arc's slope `w` where the node is, not over the band: exact to
+            // first order in `e_n` times the change of slope over the node's motion
+            largest = largest.max(at_middle.abs() / slip_c);
+            assert!(
+                at_middle.abs() <= 1e-3 * slip_c,
+                "face node {}: e* {at_middle:.3e} at the middle",
+                r.face
+            );
+        }
+        eprintln!("{held} nodes held, |e*| at the middle at most {largest:.2e} e_c");
+        assert!(held >= 3, "only {held} nodes beyond their band");
+        let (wide_model, mut wide, _) = sheared(50.0, 100.0);
+        wide.assemble(&wide_model, &st, true).expect("not inverted");
+        assert!(wide.friction_rows.iter().all(|r| r.held.is_none()));
+    }
+
     /// The semismooth step's switches are exact. Regime: on every node that the Coulomb law
     /// (μ = 10⁻⁴) puts in the Coulomb regime and the Orowan law (μ = 50, same τ_max) in the
     /// Orowan regime, the Coulomb model's tangent row, residual and `∂r/∂d` switched to the
     /// Orowan regime are the Orowan model's assembled ones (the Orowan row does not depend
-    /// on μ). Branch: a sliding node switched to stick with the limit `e_c` of a model whose
-    /// wide band (100 element lengths) holds it stuck has that model's row (the slip row does
-    /// not depend on `e_c`). The assembled tangents are checked against central differences
+    /// on μ). Branch: a sliding node switched to the band's spring with the limit `e_c` of a
+    /// model whose wide band (100 element lengths) holds it stuck has that model's row (the
+    /// slip row does not depend on `e_c`). The assembled tangents are checked against central differences
     /// in `tests/solver/fe_tangent.rs`.
     #[test]
     fn switched_rows_are_the_other_pieces_assembled_rows() {

@@ -5,6 +5,10 @@
 //! which the assembled piece's row goes into the tangent, its own entry into the symmetric values
 //! and the rest as a row update ([`crate::fe::linsys`]), so that a switch of the semismooth step
 //! changes updates only. Formulas at [`crate::fe::contact::friction`].
+//!
+//! Under the penalty law a sliding node that lies beyond its stick band also carries a hold row
+//! ([`HeldRow`], [`returning_row`]): the step that the semismooth choice puts on stick holds it
+//! at its band's middle instead of on the band's spring continued out to `e*`.
 
 use crate::fe::contact::friction::{Branch, FrictionEval, FrictionLaw, Regime};
 use crate::fe::linsys::SparseSystem;
@@ -61,7 +65,11 @@ pub(in crate::fe) fn add_friction(
         let Some((sys, friction_rows)) = tangent.as_mut() else {
             continue;
         };
-        let held_row = law.exact_stick().then(|| HeldRow {
+        let held_row = match law.exact_stick() {
+            true => Some(offset),
+            false => returning_offset(law, &f, (offset, st.slip[k].elastic)),
+        }
+        .map(|offset| HeldRow {
             equilibrium: sys.symmetric_row(2 * n),
             resid: equilibrium,
             resid_dd: dresid_dd[2 * n],
@@ -101,10 +109,38 @@ fn complementarity(law: &FrictionLaw, f: &FrictionEval, equilibrium: f64) -> f64
     }
 }
 
-/// What a node's row needs under exact stick: its equilibrium row (the symmetric tangent's
-/// row, own column included), residual `c·g` and `∂(c·g)/∂d`, the offset `x − x_anchor` and
-/// the scale `k` of its hold row. The semismooth step reads the equilibrium row to linearise
-/// a held node's reaction, and replaces it to hold a sliding node.
+/// Under the penalty law, the offset from its band's middle (`e* = 0`) of a sliding node that
+/// lies beyond its band, `|e*| > e_c`, whose hold row then returns it there: `x − x_m`, where
+/// `x_m = x_anchor − e_n/w` is the position at which its trial elastic slip `e_n + S(x) −
+/// S(x_anchor)` vanishes (`|e_n| ≤ e_c`; to within `e_n` times the change of the arc's slope `w`
+/// between the node and its anchor; `offset_from_anchor` is `x − x_anchor`). `None` for any
+/// other node.
+///
+/// Why: a sliding node that the semismooth step puts on stick is linearised on the band's spring
+/// continued out to `e*` ([`FrictionRow::law_row`]), whose force there is `e*/e_c` times the
+/// threshold. The node that has just touched is the common case: its threshold vanishes when it
+/// touches, so the predictor lets it slide tens of band widths (and in the Coulomb regime the
+/// threshold itself depends on the normal force, which the nearly incompressible layer's
+/// pressure error swings), and the spring's step from there is as far off as where it starts;
+/// the line search then crawls for many iterations. A stuck node ends inside its band, within
+/// `e_c` of the middle, so holding it there lands the step where the spring holds
+/// (docs/performance.md, "a node beyond its band returned to it").
+fn returning_offset(
+    law: &FrictionLaw,
+    f: &FrictionEval,
+    (offset_from_anchor, elastic): (f64, f64),
+) -> Option<f64> {
+    let beyond = f.branch != Branch::Stick && f.trial_slip.abs() > law.slip_c;
+    beyond.then(|| offset_from_anchor + elastic / f.w)
+}
+
+/// What holding a node needs: its equilibrium row (the symmetric tangent's row, own column
+/// included), residual `c·g` and `∂(c·g)/∂d`, the offset `x − x_hold` from where it is held and
+/// the scale `k` of its hold row. Under exact stick every node has one (`x_hold` its anchor):
+/// the semismooth step reads the equilibrium row to linearise a held node's reaction, and
+/// replaces it to hold a sliding node. Under the penalty law a sliding node beyond its band has
+/// one (`x_hold` its band's middle, [`returning_offset`]), which replaces its row where the
+/// step puts it on stick.
 #[derive(Clone, Debug, Default)]
 pub(in crate::fe) struct HeldRow {
     pub(in crate::fe) equilibrium: Vec<(usize, f64)>,
@@ -116,7 +152,7 @@ pub(in crate::fe) struct HeldRow {
 
 impl HeldRow {
     /// The change that holds the node (`row` its equation): `k e_x` replaces the
-    /// equilibrium row, `k (x − x_anchor)` its residual and 0 its `∂/∂d`.
+    /// equilibrium row, `k (x − x_hold)` its residual and 0 its `∂/∂d`.
     fn law_row(&self, row: usize) -> LawRow {
         let own: f64 = self
             .equilibrium
@@ -268,7 +304,9 @@ pub(in crate::fe) struct FrictionRow {
     pub row: usize,
     /// The node's index on the contact face.
     pub face: usize,
-    /// Under exact stick, what holding the node needs (none under the penalty law).
+    /// What holding the node needs: under exact stick, at its anchor; under the penalty law,
+    /// for a sliding node beyond its band, at the band's middle ([`returning_offset`]); else
+    /// none.
     pub held: Option<HeldRow>,
     /// Trial elastic slip `e*` at the assembled state.
     pub trial_slip: f64,
@@ -330,15 +368,18 @@ impl FrictionRow {
 
     /// The regime to assume after the step `δq`: the smaller of the linearised thresholds
     /// `w L` of the Coulomb and Orowan regimes (the rule of [`FrictionLaw::eval`]). An open
-    /// node (`N ≤ 0`, released by the active-set loop after the solve) stays open, and a
-    /// node stays in its regime where the step would open it: switching into and out of
-    /// the open regime too made the choice cost more iterations (docs/performance.md,
-    /// frictional speed).
-    pub(in crate::fe) fn regime_after(&self, step: &[f64]) -> Regime {
+    /// node (`N ≤ 0`, released by the active-set loop after the solve) stays open unless
+    /// `leave_open` (the penalty law's node beyond its band that can be returned to it,
+    /// [`returning_offset`]) and its step gives it a positive threshold, and a node stays in its
+    /// regime where the step would open it: switching into and out of the open regime in general
+    /// made the choice cost more iterations (docs/performance.md, frictional speed).
+    pub(in crate::fe) fn regime_after(&self, step: &[f64], leave_open: bool) -> Regime {
         let coulomb = self.coulomb.w_limit_after(step);
         let orowan = self.orowan.w_limit_after(step);
         match self.at.regime {
-            Regime::Open => Regime::Open,
+            Regime::Open if !leave_open || coulomb <= 0.0 => Regime::Open,
+            Regime::Open if coulomb <= orowan => Regime::Coulomb,
+            Regime::Open => Regime::Orowan,
             _ if coulomb <= 0.0 => self.at.regime,
             _ if coulomb <= orowan => Regime::Coulomb,
             _ => Regime::Orowan,

@@ -15,6 +15,13 @@
 //! factorisation (`SparseSystem::solve_switching_rows`), until the pieces agree with the
 //! step; if they have not within [`MAX_BRANCH_SWITCHES`], the assembled step is taken.
 //!
+//! A sliding node that lies beyond its band, `|e*| > e_c`, and is put on stick is held at its
+//! band's middle for the step instead of linearised on the band's spring continued out to `e*`
+//! ([`crate::fe::NewtonOptions::return_into_band`]; the hold row of `crate::fe::newton::friction_rows`);
+//! such a node, open at the iterate (`N ≤ 0`), also takes the regime its step's thresholds give
+//! it. Where it sticks, the converged state lies inside the band; where it slides, its stick
+//! step lands beyond the band again and it returns to its slip branch for good, as before.
+//!
 //! Under exact stick ([`crate::fe::contact::friction`]) the pieces are chosen the same way, by
 //! the primal–dual active-set decision [`Branch::decide`] on the linearised step: a held
 //! node's reaction from its equilibrium row, a sliding node's slip `s + w δx`, and the
@@ -73,9 +80,23 @@ pub(crate) fn solve_newton_step(
         Some(law) if opts.newton.semismooth_friction || law.exact_stick() => law,
         _ => return asm.sys.solve(rhs).map(|_| None).map_err(failed),
     };
-    let rows = &asm.friction_rows;
+    let returning = law.exact_stick() || opts.newton.return_into_band;
+    let unreturned: Vec<FrictionRow>;
+    let rows = match returning {
+        true => &asm.friction_rows,
+        false => {
+            unreturned = (asm.friction_rows.iter())
+                .map(|r| FrictionRow {
+                    held: None,
+                    ..r.clone()
+                })
+                .collect();
+            &unreturned
+        }
+    };
     let with_load_column = rhs.len() > 1;
     let mut choice = PieceChoice {
+        exact: law.exact_stick(),
         assumed: rows.iter().map(|r| r.at).collect(),
         branches: rows
             .iter()
@@ -117,9 +138,12 @@ pub(crate) fn solve_newton_step(
 
 /// The semismooth choice of the friction nodes' pieces of the law within one Newton step.
 struct PieceChoice {
+    /// The law is exact stick: the pieces are decided by [`decide_exact`].
+    exact: bool,
     /// Each friction row's piece that the last solve assumed.
     assumed: Vec<LawPiece>,
-    /// Each row's return-mapping choice under the penalty law.
+    /// Each row's return-mapping choice under the penalty law (the stick branch of a node
+    /// beyond its band being its hold at the band's middle, where it has a hold row).
     branches: Vec<BranchChoice>,
     /// The penalty law's elastic slip `e_c` (units of λ).
     slip_c: f64,
@@ -134,8 +158,10 @@ impl PieceChoice {
     fn landed(&mut self, rows: &[FrictionRow], (step, dd): (Vec<f64>, f64)) -> Vec<LawPiece> {
         let mut landed = self.assumed.clone();
         for (i, r) in rows.iter().enumerate() {
-            let regime = r.regime_after(&step);
-            let slip = match &r.held {
+            // under the penalty law a hold row is a node beyond its band, which may leave
+            // the open regime for the step (module documentation)
+            let regime = r.regime_after(&step, !self.exact && r.held.is_some());
+            let slip = match r.held.as_ref().filter(|_| self.exact) {
                 Some(held) => {
                     decide_exact(r, held, (self.assumed[i], regime), (&step, dd), self.c_t)
                 }
