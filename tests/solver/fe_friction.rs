@@ -3,7 +3,7 @@
 //! (`wavy::fe::shear_test`). Reference: the Coulomb–Orowan law itself (R3): the total
 //! friction force of a sliding face is Σ min(μ N_i, τ_max ℓ_i), which is μ p̄ W when
 //! Coulomb governs everywhere and τ_max × (deformed face length) when Orowan does.
-use crate::curve_pairs::largest_relative_difference;
+use crate::curve_pairs::{coarse_to_0_4, largest_relative_difference};
 use std::ops::ControlFlow;
 use wavy::fe::shear_test::{press_and_shear, ShearPoint, ShearTest};
 use wavy::fe::CoulombOrowan;
@@ -143,14 +143,11 @@ fn curve_with_band(
 /// counts it prints are recorded in docs/performance.md).
 #[test]
 fn semismooth_branch_choice_changes_the_path_not_the_curve() {
-    let opts = |semismooth_friction| SolveOptions {
-        mesh: MeshLevel::Coarse,
-        until_a_over_lambda: 0.4,
-        newton: NewtonOptions {
+    let opts = |semismooth_friction| {
+        coarse_to_0_4(NewtonOptions {
             semismooth_friction,
             ..Default::default()
-        },
-        ..Default::default()
+        })
     };
     let (with, without) = (
         curve_with(0.3, 0.2, &opts(true)),
@@ -184,14 +181,11 @@ fn semismooth_branch_choice_changes_the_path_not_the_curve() {
 /// largest difference), in fewer Newton iterations (counted, deterministic; printed).
 #[test]
 fn returning_into_the_band_changes_the_path_not_the_curve() {
-    let opts = |return_into_band| SolveOptions {
-        mesh: MeshLevel::Coarse,
-        until_a_over_lambda: 0.4,
-        newton: NewtonOptions {
+    let opts = |return_into_band| {
+        coarse_to_0_4(NewtonOptions {
             return_into_band,
             ..Default::default()
-        },
-        ..Default::default()
+        })
     };
     let iterations = |c: &Curve| c.points.iter().map(|p| p.newton_iterations).sum::<usize>();
     for tau_max_over_estar in [0.1, 0.2] {
@@ -219,14 +213,11 @@ fn returning_into_the_band_changes_the_path_not_the_curve() {
 /// solution, and the decision's path picks one (docs/replication.md, R3).
 #[test]
 fn exact_stick_decision_stiffness_changes_the_path_not_the_curve() {
-    let opts = |stick_decision_stiffness| SolveOptions {
-        mesh: MeshLevel::Coarse,
-        until_a_over_lambda: 0.4,
-        newton: NewtonOptions {
+    let opts = |stick_decision_stiffness| {
+        coarse_to_0_4(NewtonOptions {
             stick_decision_stiffness,
             ..Default::default()
-        },
-        ..Default::default()
+        })
     };
     let soft = curve_with_band(0.3, 0.1, 0.0, &opts(0.1));
     let default = curve_with_band(0.3, 0.1, 0.0, &opts(1.0));

@@ -7,7 +7,7 @@
 //! changes updates only. Formulas at [`crate::fe::contact::friction`].
 //!
 //! Under the penalty law a sliding node that lies beyond its stick band also carries a hold row
-//! ([`HeldRow`], [`returning_row`]): the step that the semismooth choice puts on stick holds it
+//! ([`HeldRow`], [`returning_offset`]): the step that the semismooth choice puts on stick holds it
 //! at its band's middle instead of on the band's spring continued out to `e*`.
 
 use crate::fe::contact::friction::{Branch, FrictionEval, FrictionLaw, Regime};
@@ -121,8 +121,8 @@ fn complementarity(law: &FrictionLaw, f: &FrictionEval, equilibrium: f64) -> f64
 /// threshold. The node that has just touched is the common case: its threshold vanishes when it
 /// touches, so the predictor lets it slide tens of band widths (and in the Coulomb regime the
 /// threshold itself depends on the normal force, which the nearly incompressible layer's
-/// pressure error swings), and the spring's step from there is as far off as where it starts;
-/// the line search then crawls for many iterations. A stuck node ends inside its band, within
+/// pressure error swings), and the spring's step from there is no better a guess (from 80 band
+/// widths out it landed at 160); the line search then crawls for many iterations. A stuck node ends inside its band, within
 /// `e_c` of the middle, so holding it there lands the step where the spring holds
 /// (docs/performance.md, "a node beyond its band returned to it").
 fn returning_offset(
@@ -342,7 +342,9 @@ impl FrictionRow {
     /// lengths long and the line search cuts it to a small fraction. The factor of `δ(w L)`
     /// is therefore `φ` clamped to `[−1, 1]`, the value it has at any landing point on the
     /// branch; the force and `δφ` keep the affine law. Inside the band (every assembled row)
-    /// nothing changes (docs/performance.md, frictional speed).
+    /// nothing changes (docs/performance.md, frictional speed). Where the node has a hold row
+    /// (under exact stick; under the penalty law beyond its band, [`returning_offset`]), its
+    /// stick branch is that hold instead.
     pub(in crate::fe) fn law_row(&self, on: LawPiece, slip_c: f64) -> LawRow {
         let Some(r) = self.regime_row(on.regime) else {
             return LawRow::default();
