@@ -159,8 +159,8 @@ fn a_steep_peak_graded_finer_holds_the_coarse_layer() {
 /// the friction law's Coulomb–Orowan crossover that carries the largest residual: the AR 0.3,
 /// τ_max/E* 0.1 loop on 48 face elements stops there (docs/verification.md, "Robustness
 /// grid"; on 32 it completes since a node beyond its band is returned to it), and a stop of
-/// another kind, the frictional AR 0.4 curve losing stability while
-/// loading on [`MESH`] elements, names no crossover.
+/// another kind, the frictional AR 0.4 curve losing stability while loading on [`MESH`]
+/// elements, names no crossover.
 #[test]
 fn an_unloading_stall_at_the_friction_crossover_is_named_in_the_message() {
     let slip = wavy::defaults::elastic_slip_over_element();

@@ -422,11 +422,7 @@ mod tests {
                 continue;
             }
             compared += 1;
-            let spring = FrictionRow {
-                held: None,
-                ..rf.clone()
-            };
-            let (entries, d_resid, d_resid_dd) = spring.switched(rt.at, slip_c);
+            let (entries, d_resid, d_resid_dd) = rf.without_hold().switched(rt.at, slip_c);
             let scale = (0..n).fold(0.0_f64, |m, c| m.max(to.sys.get(rt.row, c).abs()));
             for c in 0..n {
                 let extra: f64 = entries.iter().filter(|e| e.0 == c).map(|e| e.1).sum();
@@ -462,7 +458,8 @@ mod tests {
             h.elastic = if k % 2 == 0 { 0.5 } else { -0.5 } * slip_c;
         }
         let forces = asm.assemble(&model, &st, true).expect("not inverted");
-        let k = model.friction.expect("friction").hold_stiffness;
+        let law = model.friction.expect("friction");
+        let k = law.hold_stiffness;
         let n = asm.sys.size();
         let (mut held, mut largest) = (0, 0.0_f64);
         for r in &asm.friction_rows {
@@ -491,7 +488,6 @@ mod tests {
             let mut middle = st.clone();
             middle.x[model.mesh.bottom[r.face]][0] -= hold.offset;
             model.enforce_constraints(&mut middle);
-            let law = model.friction.expect("friction");
             let at_middle =
                 (model.friction_eval(&middle, r.face, (&forces.grad, None), &law)).trial_slip;
             // `x_m` takes the arc's slope `w` where the node is, not over the band: exact to
@@ -516,8 +512,8 @@ mod tests {
     /// Orowan regime are the Orowan model's assembled ones (the Orowan row does not depend
     /// on μ). Branch: a sliding node switched to the band's spring with the limit `e_c` of a
     /// model whose wide band (100 element lengths) holds it stuck has that model's row (the
-    /// slip row does not depend on `e_c`). The assembled tangents are checked against central differences
-    /// in `tests/solver/fe_tangent.rs`.
+    /// slip row does not depend on `e_c`). The assembled tangents are checked against central
+    /// differences in `tests/solver/fe_tangent.rs`.
     #[test]
     fn switched_rows_are_the_other_pieces_assembled_rows() {
         let mut coulomb = sheared(1e-4, 0.005);

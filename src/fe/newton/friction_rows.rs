@@ -122,9 +122,9 @@ fn complementarity(law: &FrictionLaw, f: &FrictionEval, equilibrium: f64) -> f64
 /// touches, so the predictor lets it slide tens of band widths (and in the Coulomb regime the
 /// threshold itself depends on the normal force, which the nearly incompressible layer's
 /// pressure error swings), and the spring's step from there is no better a guess (from 80 band
-/// widths out it landed at 160); the line search then crawls for many iterations. A stuck node ends inside its band, within
-/// `e_c` of the middle, so holding it there lands the step where the spring holds
-/// (docs/performance.md, "a node beyond its band returned to it").
+/// widths out it landed at 160); the line search then crawls for many iterations. A stuck node
+/// ends inside its band, within `e_c` of the middle, so holding it there lands the step where the
+/// spring holds (docs/performance.md, "a node beyond its band returned to it").
 fn returning_offset(
     law: &FrictionLaw,
     f: &FrictionEval,
@@ -379,12 +379,19 @@ impl FrictionRow {
         let coulomb = self.coulomb.w_limit_after(step);
         let orowan = self.orowan.w_limit_after(step);
         match self.at.regime {
-            Regime::Open if !leave_open || coulomb <= 0.0 => Regime::Open,
-            Regime::Open if coulomb <= orowan => Regime::Coulomb,
-            Regime::Open => Regime::Orowan,
-            _ if coulomb <= 0.0 => self.at.regime,
+            Regime::Open if !leave_open => Regime::Open,
+            at if coulomb <= 0.0 => at,
             _ if coulomb <= orowan => Regime::Coulomb,
             _ => Regime::Orowan,
+        }
+    }
+
+    /// This row without its hold: a sliding node's stick branch is then the band's spring
+    /// continued out to `e*` ([`Self::law_row`]).
+    pub(in crate::fe) fn without_hold(&self) -> Self {
+        Self {
+            held: None,
+            ..self.clone()
         }
     }
 

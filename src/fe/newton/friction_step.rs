@@ -17,9 +17,9 @@
 //!
 //! A sliding node that lies beyond its band, `|e*| > e_c`, and is put on stick is held at its
 //! band's middle for the step instead of linearised on the band's spring continued out to `e*`
-//! ([`crate::fe::NewtonOptions::return_into_band`]; the hold row of `crate::fe::newton::friction_rows`);
-//! such a node, open at the iterate (`N ≤ 0`), also takes the regime its step's thresholds give
-//! it. Where it sticks, the converged state lies inside the band; where it slides, its stick
+//! ([`crate::fe::NewtonOptions::return_into_band`]; the hold row of
+//! `crate::fe::newton::friction_rows`); such a node, open at the iterate (`N ≤ 0`), also takes
+//! the regime its step's thresholds give it. Where it sticks, the converged state lies inside the band; where it slides, its stick
 //! step lands beyond the band again and it returns to its slip branch for good, as before.
 //!
 //! Under exact stick ([`crate::fe::contact::friction`]) the pieces are chosen the same way, by
@@ -85,11 +85,10 @@ pub(crate) fn solve_newton_step(
     let rows = match returning {
         true => &asm.friction_rows,
         false => {
-            unreturned = (asm.friction_rows.iter())
-                .map(|r| FrictionRow {
-                    held: None,
-                    ..r.clone()
-                })
+            unreturned = asm
+                .friction_rows
+                .iter()
+                .map(FrictionRow::without_hold)
                 .collect();
             &unreturned
         }
