@@ -6,7 +6,7 @@
 CARGO ?= cargo
 export CARGO_TERM_COLOR ?= never
 
-.PHONY: all reproduce test python-test lint fmt-check clippy check bless stale bench bench-solver bench-tiers reference robustness fuzz clean
+.PHONY: all reproduce test python-test lint fmt-check clippy check bless stale bench bench-solver bench-tiers reference robustness mesh-study fuzz clean
 
 all: reproduce
 
@@ -124,6 +124,19 @@ robustness:
 	$(CARGO) build --release --locked
 	$(CARGO) run --release --locked --quiet --example robustness_grid -- --wavy target/release/wavy --mesh $(ROBUSTNESS_MESHES) --tau-max-mpa $(ROBUSTNESS_TAUS) --timeout-s $(ROBUSTNESS_TIMEOUT_S) > $(ROBUSTNESS_CSV).tmp
 	mv $(ROBUSTNESS_CSV).tmp $(ROBUSTNESS_CSV)
+
+## A mesh study, one curve per core (docs/replication.md R11, "Friction on fine meshes"; docs/performance.md):
+## each case AR:τ_max[:finest mesh] of MESH_STUDY_CASES on the meshes of MESH_STUDY_MESHES, its curves kept in
+## .wavy-tmp/mesh_study (a curve there is read, not solved again), the summary written to MESH_STUDY_CSV.
+MESH_STUDY_CASES ?= 0.3:0.1,0.3:0.2,0.18:0.1,0.18:0.2,0.3:0:192,0.18:0:192
+MESH_STUDY_MESHES ?= 48,64,96,128,160,192,256,320
+MESH_STUDY_LIMIT_MESHES ?= 64,96,128,160,192,256
+MESH_STUDY_TIMEOUT_S ?= 450
+MESH_STUDY_CSV ?= experiments/data/mesh_study.csv
+mesh-study:
+	$(CARGO) build --release --locked
+	$(CARGO) run --release --locked --quiet --example mesh_study -- --wavy target/release/wavy --cases $(MESH_STUDY_CASES) --mesh $(MESH_STUDY_MESHES) --limit-meshes $(MESH_STUDY_LIMIT_MESHES) --timeout-s $(MESH_STUDY_TIMEOUT_S) > $(MESH_STUDY_CSV).tmp
+	mv $(MESH_STUDY_CSV).tmp $(MESH_STUDY_CSV)
 
 ## The property and fuzz suites with 10⁶ cases each (make test runs 10⁴); WAVY_FUZZ_SEED picks another seed.
 fuzz:
