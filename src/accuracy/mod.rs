@@ -36,6 +36,12 @@ pub enum Tier {
     /// `p_fine + (p_fine − p_coarse) / (fine/coarse − 1)` at each a/λ
     /// ([`richardson_tier_values`]).
     FeRichardson { coarse: usize, fine: usize },
+    /// The mesh limit `p₀ + c₁/n + c₂/n²` of our finite-strain FE through three meshes
+    /// `n₁ < n₂ < n₃` elements along the face, at each a/λ ([`extrapolated_tier_values`]):
+    /// the reference's own form ([`extrapolation::mesh_limit`]) from three cheap meshes, which
+    /// removes both the first-order error (the edge rule's, and friction's) and the
+    /// second-order one (docs/replication.md R11).
+    FeLimit { meshes: [usize; 3] },
 }
 
 /// The order of the error that a [`Tier::FeRichardson`] removes: first, the order of the edge
@@ -55,11 +61,14 @@ impl Tier {
                 elements_along_face,
             } => format!("fe-{}-{elements_along_face}", kinematics.name()),
             Tier::FeRichardson { coarse, fine } => format!("fe-richardson-{coarse}-{fine}"),
+            Tier::FeLimit {
+                meshes: [n1, n2, n3],
+            } => format!("fe-limit-{n1}-{n2}-{n3}"),
         }
     }
 
-    /// The FE curves a tier computes: its mesh, or a Richardson tier's two (finite strain);
-    /// none for a closed form.
+    /// The FE curves a tier computes: its mesh, or an extrapolating tier's meshes (finite
+    /// strain, coarsest first); none for a closed form.
     pub fn fe_curves(&self) -> Vec<(Kinematics, usize)> {
         match *self {
             Tier::Fe {
@@ -69,15 +78,16 @@ impl Tier {
             Tier::FeRichardson { coarse, fine } => {
                 vec![(Kinematics::Finite, coarse), (Kinematics::Finite, fine)]
             }
+            Tier::FeLimit { meshes } => meshes.map(|n| (Kinematics::Finite, n)).to_vec(),
             _ => vec![],
         }
     }
 
-    /// The tiers whose wall times make up this tier's: itself, or a Richardson tier's two
+    /// The tiers whose wall times make up this tier's: itself, or an extrapolating tier's
     /// meshes (a timings file times those, not the extrapolation).
     pub fn timed_tiers(&self) -> Vec<Tier> {
         match *self {
-            Tier::FeRichardson { .. } => self
+            Tier::FeRichardson { .. } | Tier::FeLimit { .. } => self
                 .fe_curves()
                 .into_iter()
                 .map(|(kinematics, elements_along_face)| Tier::Fe {
@@ -87,6 +97,11 @@ impl Tier {
                 .collect(),
             _ => vec![*self],
         }
+    }
+
+    /// True for the tiers that extrapolate several FE curves ([`extrapolated_tier_values`]).
+    pub fn is_extrapolated(&self) -> bool {
+        matches!(self, Tier::FeRichardson { .. } | Tier::FeLimit { .. })
     }
 
     /// True for the closed-form laws (cost per point, no mesh).
@@ -132,7 +147,7 @@ impl Tier {
         let (kind, set) = match *self {
             Tier::Westergaard => (ModelKind::Westergaard, CoefficientSet::default()),
             Tier::Wnl(set) => (ModelKind::Wnl, set),
-            Tier::Fe { .. } | Tier::FeRichardson { .. } => return None,
+            Tier::Fe { .. } | Tier::FeRichardson { .. } | Tier::FeLimit { .. } => return None,
         };
         Some(ModelLaw::new(
             kind,
@@ -152,7 +167,7 @@ impl fmt::Display for Tier {
 
 /// A name that is not a tier.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("value \"{0}\" is not a tier; allowed: westergaard, wnl-<coefficient set> ({sets}), fe-finite-N or fe-linear-N (N elements along the face, {lo} to {hi}), fe-richardson-C-F (meshes C < F in the same range)", sets = CoefficientSet::names(), lo = MeshLevel::ELEMENTS_ALONG_FACE.start(), hi = MeshLevel::ELEMENTS_ALONG_FACE.end())]
+#[error("value \"{0}\" is not a tier; allowed: westergaard, wnl-<coefficient set> ({sets}), fe-finite-N or fe-linear-N (N elements along the face, {lo} to {hi}), fe-richardson-C-F (meshes C < F in the same range), fe-limit-A-B-C (meshes A < B < C in the same range)", sets = CoefficientSet::names(), lo = MeshLevel::ELEMENTS_ALONG_FACE.start(), hi = MeshLevel::ELEMENTS_ALONG_FACE.end())]
 pub struct TierParseError(pub String);
 
 impl FromStr for Tier {
@@ -178,6 +193,15 @@ impl FromStr for Tier {
                 return Err(bad());
             }
             return Ok(Tier::FeRichardson { coarse, fine });
+        }
+        if let Some(meshes) = s.strip_prefix("fe-limit-") {
+            let n: Vec<usize> = meshes.split('-').map(elements).collect::<Result<_, _>>()?;
+            return match n[..] {
+                [n1, n2, n3] if n1 < n2 && n2 < n3 => Ok(Tier::FeLimit {
+                    meshes: [n1, n2, n3],
+                }),
+                _ => Err(bad()),
+            };
         }
         let rest = s.strip_prefix("fe-").ok_or_else(bad)?;
         let (kinematics, n) = rest.rsplit_once('-').ok_or_else(bad)?;
@@ -241,6 +265,30 @@ pub fn richardson_tier_values(
             Some(richardson(c, f, ratio, RICHARDSON_TIER_ORDER))
         })
         .collect()
+}
+
+/// The p̄/E* of an extrapolating tier ([`Tier::is_extrapolated`]) at each a/λ of `xs`, from
+/// its curves, one per mesh of [`Tier::fe_curves`] in that order: the Richardson step
+/// ([`richardson_tier_values`]) or the mesh limit through three meshes
+/// ([`extrapolation::mesh_limit`]). `None` if a curve does not cover `xs`, or for another tier.
+pub fn extrapolated_tier_values(
+    tier: &Tier,
+    curves: &[&[CurvePoint]],
+    xs: &[f64],
+) -> Option<Vec<f64>> {
+    match (*tier, curves) {
+        (Tier::FeRichardson { coarse, fine }, &[c, f]) => {
+            richardson_tier_values((c, coarse), (f, fine), xs)
+        }
+        (Tier::FeLimit { meshes }, &[_, _, _]) => xs
+            .iter()
+            .map(|&x| {
+                let values: Vec<f64> = curves.iter().map(|c| p_at(c, x)).collect::<Option<_>>()?;
+                extrapolation::mesh_limit(&meshes, &values)
+            })
+            .collect(),
+        _ => None,
+    }
 }
 
 /// The Richardson estimate of the relative error of `fine`: `|fine − coarse| / (ratio^order − 1)
@@ -309,6 +357,9 @@ mod tests {
                 coarse: 48,
                 fine: 96,
             },
+            Tier::FeLimit {
+                meshes: [48, 64, 96],
+            },
         ];
         for t in tiers {
             assert_eq!(t.name().parse::<Tier>(), Ok(t));
@@ -326,6 +377,11 @@ mod tests {
             "fe-richardson-48",
             "fe-richardson-3-48",
             "fe-richardson-48-96-128",
+            "fe-limit-48-96",
+            "fe-limit-48-96-64",
+            "fe-limit-48-48-96",
+            "fe-limit-3-48-96",
+            "fe-limit-48-64-96-128",
         ] {
             assert!(bad.parse::<Tier>().is_err(), "{bad}");
         }
@@ -389,6 +445,30 @@ mod tests {
             assert!((p / (x * x) - 1.0).abs() < 1e-12, "{x} {p}");
         }
         assert!(richardson_tier_values((&coarse[6..], 48), (&fine, 96), &xs).is_none());
+    }
+
+    /// Curves p_n = a²(1 + 3/n − 40/n²) on meshes 48, 64 and 96: the mesh-limit tier removes
+    /// both terms exactly (to round-off), the first-order Richardson tier of two of them only
+    /// the first; a curve that starts late leaves the tier without values.
+    #[test]
+    fn the_mesh_limit_tier_removes_first_and_second_order_errors() {
+        let on = |n: f64| curve(1.0 + 3.0 / n - 40.0 / (n * n));
+        let (c48, c64, c96) = (on(48.0), on(64.0), on(96.0));
+        let tier: Tier = "fe-limit-48-64-96".parse().unwrap();
+        let xs = [0.1, 0.2, 0.3];
+        let v = extrapolated_tier_values(&tier, &[&c48, &c64, &c96], &xs).unwrap();
+        for (x, p) in xs.iter().zip(&v) {
+            assert!((p / (x * x) - 1.0).abs() < 1e-12, "{x} {p}");
+        }
+        let richardson: Tier = "fe-richardson-48-96".parse().unwrap();
+        let r = extrapolated_tier_values(&richardson, &[&c48, &c96], &xs).unwrap();
+        // what first order leaves of −40/n²: 40/(48·96)
+        assert!(
+            (r[1] / 0.04 - 1.0 - 40.0 / (48.0 * 96.0)).abs() < 1e-12,
+            "{r:?}"
+        );
+        assert!(extrapolated_tier_values(&tier, &[&c48[6..], &c64, &c96], &xs).is_none());
+        assert!(extrapolated_tier_values(&tier, &[&c48, &c96], &xs).is_none());
     }
 
     #[test]

@@ -151,9 +151,9 @@ fn committed_spec_has_a_timing_for_every_tier_and_case() {
             }
         }
     }
-    // 3 aspect ratios × 2 τ_max × (11 tiers + the 2 meshes of fe-richardson-48-96) of
-    // experiments/speed_accuracy.toml
-    assert_eq!(n, 78);
+    // 3 aspect ratios × 2 τ_max × (11 tiers + the 2 meshes of fe-richardson-48-96 + the 3 of
+    // fe-limit-48-64-96) of experiments/speed_accuracy.toml
+    assert_eq!(n, 96);
 }
 
 #[test]
@@ -254,18 +254,18 @@ fn eval_tolerance_names_its_tier_or_refuses_with_exit_2() {
     );
 }
 
-/// `--tolerance 0.001` over the whole curve picks the Richardson tier where it is measured to
-/// meet it (frictionless AR 0.3: 0.086 % against 0.17 % for mesh 96), and what it answers is
-/// within the tolerance of the committed converged reference at every a/λ asked (measured
-/// 0.02–0.09 %).
-#[test]
-fn eval_tolerance_picks_the_richardson_tier_and_meets_it() {
+/// `wavy eval --tolerance 0.001` at (AR, τ_max) over the whole curve: the tier it says it
+/// picked, and the largest relative difference of its answers at a/λ 0.05, 0.1, 0.25 and 0.45
+/// from the committed converged reference.
+fn eval_at_a_tenth_of_a_percent(ar: &str, tau_max_mpa: &str) -> (String, f64) {
     let o = wavy(&[
         "eval",
         "--tolerance",
         "0.001",
         "--ar",
-        "0.3",
+        ar,
+        "--tau-max-mpa",
+        tau_max_mpa,
         "--a-over-lambda",
         "0.05",
         "0.1",
@@ -273,34 +273,55 @@ fn eval_tolerance_picks_the_richardson_tier_and_meets_it() {
         "0.45",
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains("tier fe-richardson-48-96 (measured error ≤"),
-        "{}",
-        stderr(&o)
-    );
     let spec = load_spec(&root().join("experiments/speed_accuracy.toml")).unwrap();
     let s = spec.speed_accuracy.as_ref().unwrap();
     let reference = reference_curves::read(&root().join("experiments").join(&s.reference)).unwrap();
-    let limit = reference.case(0.3, 0.0, s.physics());
+    let limit = reference.case(
+        ar.parse().unwrap(),
+        tau_max_mpa.parse().unwrap(),
+        s.physics(),
+    );
     let text = String::from_utf8_lossy(&o.stdout);
-    let mut rows = 0;
+    let (mut rows, mut tier, mut largest) = (0, String::new(), 0.0f64);
     for line in text.lines().skip(1) {
         let row: Vec<&str> = line.split(',').collect();
-        assert_eq!(row[0], "fe-richardson-48-96", "{line}");
+        tier = row[0].to_string();
         let (a, p): (f64, f64) = (row[5].parse().unwrap(), row[6].parse().unwrap());
         let r = limit
             .iter()
             .find(|r| (r.a_over_lambda - a).abs() < 1e-9)
             .unwrap();
-        let e = (p / r.p_over_estar - 1.0).abs();
-        assert!(
-            e <= 0.001,
-            "a/λ {a}: {p} against {} ({e:.2e})",
-            r.p_over_estar
-        );
+        largest = largest.max((p / r.p_over_estar - 1.0).abs());
         rows += 1;
     }
     assert_eq!(rows, 4);
+    assert!(
+        stderr(&o).contains(&format!("tier {tier} (measured error ≤")),
+        "{}",
+        stderr(&o)
+    );
+    (tier, largest)
+}
+
+/// Frictionless, `--tolerance 0.001` picks the Richardson tier where it is measured to meet it
+/// (AR 0.3: 0.086 % against 0.17 % for mesh 96), and what it answers is within the tolerance
+/// of the converged reference (measured 0.02–0.09 %).
+#[test]
+fn eval_tolerance_picks_the_richardson_tier_and_meets_it() {
+    let (tier, largest) = eval_at_a_tenth_of_a_percent("0.3", "0");
+    assert_eq!(tier, "fe-richardson-48-96");
+    assert!(largest <= 0.001, "{largest:.2e}");
+}
+
+/// With friction (AR 0.18, τ_max 0.1 MPa) the first-order Richardson tier errs 0.13 % and
+/// `--tolerance 0.001` picks the mesh limit of meshes 48, 64 and 96 (measured 0.031 % over the
+/// curve); at the four a/λ asked its answers lie within 0.014 % of the converged reference
+/// (measured 2026-11-30).
+#[test]
+fn eval_tolerance_with_friction_picks_the_mesh_limit_tier_and_meets_it() {
+    let (tier, largest) = eval_at_a_tenth_of_a_percent("0.18", "0.1");
+    assert_eq!(tier, "fe-limit-48-64-96");
+    assert!(largest <= 2e-4, "{largest:.2e}");
 }
 
 #[test]

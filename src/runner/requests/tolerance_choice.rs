@@ -4,8 +4,8 @@
 //! printed: the command line tells it on stderr.
 
 use crate::accuracy::measured::{self, Choice, ChoiceError, Query};
-use crate::accuracy::{richardson_tier_values, Tier};
-use crate::fe::{self, Kinematics, MeshLevel};
+use crate::accuracy::{extrapolated_tier_values, Tier};
+use crate::fe::{self, CurvePoint, Kinematics, MeshLevel};
 use crate::models::PressureLaw;
 use crate::runner::requests::input_checks::{a_over_lambda_in_range, out_of_range, InputError};
 use crate::runner::requests::request_error::RequestError;
@@ -147,11 +147,12 @@ pub fn eval_with_tier(
         })?;
         curves.push(curve.points);
     }
-    let p_at = |x: f64| match tier {
-        Tier::FeRichardson { coarse, fine } => {
-            richardson_tier_values((&curves[0], coarse), (&curves[1], fine), &[x]).map(|v| v[0])
+    let p_at = |x: f64| match tier.is_extrapolated() {
+        true => {
+            let points: Vec<&[CurvePoint]> = curves.iter().map(|c| c.as_slice()).collect();
+            extrapolated_tier_values(&tier, &points, &[x]).map(|v| v[0])
         }
-        _ => fe::convergence::p_at(&curves[0], x),
+        false => fe::convergence::p_at(&curves[0], x),
     };
     for &x in xs {
         let p = p_at(x).ok_or_else(|| {

@@ -44,6 +44,8 @@ struct Families {
     finite: String,
     /// The Richardson pairs.
     richardson: String,
+    /// The mesh-limit triples.
+    limit: String,
 }
 
 impl Families {
@@ -58,16 +60,24 @@ impl Families {
                 _ => None,
             })
             .collect();
+        let meshes_of = |t: &Tier| {
+            let meshes: Vec<String> = t.fe_curves().iter().map(|c| c.1.to_string()).collect();
+            meshes.join("+")
+        };
         let richardson_pairs: Vec<String> = tiers
             .iter()
-            .filter_map(|t| match t {
-                Tier::FeRichardson { coarse, fine } => Some(format!("{coarse}+{fine}")),
-                _ => None,
-            })
+            .filter(|t| matches!(t, Tier::FeRichardson { .. }))
+            .map(meshes_of)
+            .collect();
+        let limit_triples: Vec<String> = tiers
+            .iter()
+            .filter(|t| matches!(t, Tier::FeLimit { .. }))
+            .map(meshes_of)
             .collect();
         Families {
             finite: format!("FE finite strain, mesh {}", finite_meshes.join(", ")),
             richardson: format!("FE Richardson, meshes {}", richardson_pairs.join(", ")),
+            limit: format!("FE mesh limit, meshes {}", limit_triples.join(", ")),
         }
     }
 
@@ -85,6 +95,7 @@ impl Families {
             } => ("FE linear", palette::PURPLE),
             Tier::Fe { .. } => (self.finite.as_str(), palette::BLUE),
             Tier::FeRichardson { .. } => (self.richardson.as_str(), palette::VERMILION),
+            Tier::FeLimit { .. } => (self.limit.as_str(), palette::SKY),
         }
     }
 }

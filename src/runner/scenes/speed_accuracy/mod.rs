@@ -17,20 +17,23 @@ pub mod refine_reference;
 pub(crate) mod tables;
 pub(crate) mod tier_measurement;
 pub mod tier_timings;
+pub(crate) mod tier_values;
 pub mod time_tiers;
 
-use crate::accuracy::{richardson_tier_values, Tier};
-use crate::fe::{convergence, Kinematics, MeshLevel};
-use crate::models::PressureLaw;
+use crate::accuracy::Tier;
+use crate::fe::{Kinematics, MeshLevel};
 use crate::runner::scenes::scene_output::{Layout, Remarks};
 use crate::runner::scenes::speed_accuracy::case_reference::Reference;
 use crate::runner::scenes::speed_accuracy::figure::figure_panels;
 use crate::runner::scenes::speed_accuracy::reference_curves::ReferenceCurves;
 use crate::runner::scenes::speed_accuracy::tables::{SceneColumns, Tables};
 use crate::runner::scenes::speed_accuracy::tier_measurement::{
-    error_time_trade, pareto_front, CaseMeasurements, FeCost, Measurement,
+    error_time_trade, pareto_front, CaseMeasurements, Measurement,
 };
 use crate::runner::scenes::speed_accuracy::tier_timings::Timings;
+use crate::runner::scenes::speed_accuracy::tier_values::{
+    closed_form_values, extrapolated_values, fe_tier_values,
+};
 use crate::runner::scenes::{Scene, SceneContext, SceneResult};
 use crate::runner::sweep::fe_cases::{FeCase, FeOutcome, FePhysics, SolvedCases};
 use crate::runner::RunOptions;
@@ -51,7 +54,8 @@ pub struct SpeedAccuracyScene {
     /// tolerance asked at larger a/λ is judged by its own band.
     pub error_bands: Vec<f64>,
     /// The tiers measured, by name (`westergaard`, `wnl-<set>`, `fe-finite-N`, `fe-linear-N`,
-    /// `fe-richardson-C-F`; a Richardson tier's meshes are tiers too: its time is theirs).
+    /// `fe-richardson-C-F`, `fe-limit-A-B-C`; an extrapolating tier's meshes are tiers too: its
+    /// time is theirs).
     #[serde(deserialize_with = "tiers_from_names")]
     pub tiers: Vec<Tier>,
     /// Elements along the face of the finite-strain meshes whose limit is the reference, coarse
@@ -145,7 +149,7 @@ impl SpeedAccuracyScene {
         Ok(())
     }
 
-    /// `tiers`: each once, and a Richardson tier's two meshes among them.
+    /// `tiers`: each once, and an extrapolating tier's meshes among them.
     fn check_tiers(&self, v: &Validator) -> Result<(), SpecError> {
         for (i, t) in self.tiers.iter().enumerate() {
             if self.tiers[..i].contains(t) {
@@ -156,21 +160,24 @@ impl SpeedAccuracyScene {
                     "each tier once".into(),
                 ));
             }
-            if let Tier::FeRichardson { coarse, fine } = *t {
-                let listed = |nx| {
-                    self.tiers.contains(&Tier::Fe {
-                        kinematics: Kinematics::Finite,
-                        elements_along_face: nx,
-                    })
-                };
-                if !(listed(coarse) && listed(fine)) {
-                    return Err(v.invalid(
-                        &format!("speed_accuracy.tiers[{i}]"),
-                        None,
-                        t.name(),
-                        format!("fe-finite-{coarse} and fe-finite-{fine} among the tiers too (the Richardson tier's time is theirs)"),
-                    ));
-                }
+            let meshes: Vec<Tier> = (t.fe_curves().into_iter())
+                .filter(|_| t.is_extrapolated())
+                .map(|(kinematics, elements_along_face)| Tier::Fe {
+                    kinematics,
+                    elements_along_face,
+                })
+                .collect();
+            if meshes.iter().any(|mesh| !self.tiers.contains(mesh)) {
+                let names: Vec<String> = meshes.iter().map(Tier::name).collect();
+                return Err(v.invalid(
+                    &format!("speed_accuracy.tiers[{i}]"),
+                    None,
+                    t.name(),
+                    format!(
+                        "{} among the tiers too (an extrapolating tier's time is its meshes')",
+                        names.join(" and ")
+                    ),
+                ));
             }
         }
         Ok(())
@@ -418,15 +425,6 @@ fn curve<'a>(
         .expect("every curve of the scene is among its cases")
 }
 
-/// The unknowns and the work of an FE curve on the mesh of `nx` elements along the face.
-fn fe_cost(nx: usize, o: &FeOutcome) -> FeCost {
-    FeCost {
-        dofs: MeshLevel::along_face(nx).unknowns(),
-        load_steps: o.points.len(),
-        newton_iterations: o.points.iter().map(|p| p.newton_iterations).sum(),
-    }
-}
-
 /// One tier at (AR, τ_max in MPa): its cost, and its p̄/E* on the a/λ grid (none when it has
 /// no curve there: the measurement's status says why).
 fn measure(
@@ -465,9 +463,11 @@ fn measure(
             tier,
             &at,
         )?,
-        Tier::FeRichardson { coarse, fine } => {
-            let [c, f] = [coarse, fine].map(|nx| curve(s, solved, Kinematics::Finite, nx, ar, tau));
-            richardson_values(&xs, (c, coarse), (f, fine), tier, &at)?
+        Tier::FeRichardson { .. } | Tier::FeLimit { .. } => {
+            let curves: Vec<(&FeOutcome, usize)> = (tier.fe_curves().into_iter())
+                .map(|(kinematics, nx)| (curve(s, solved, kinematics, nx, ar, tau), nx))
+                .collect();
+            extrapolated_values(&xs, &curves, tier, &at)?
         }
         _ => closed_form_values(&xs, tier, ar, tau),
     };
@@ -483,76 +483,6 @@ fn measure(
         fe,
     };
     Ok((m, values))
-}
-
-/// What a tier answers on the a/λ grid `xs` (none where it has no curve there), the status
-/// that says why not, and the FE cost of its curves (none for a closed form).
-type TierValues = (Option<Vec<f64>>, String, Option<FeCost>);
-
-/// The FE tier of the curve `o` on `nx` elements along the face: its p̄/E* on `xs`, or where it
-/// stopped.
-fn fe_tier_values(
-    xs: &[f64],
-    o: &FeOutcome,
-    nx: usize,
-    tier: &Tier,
-    at: &str,
-) -> Result<TierValues> {
-    let cost = fe_cost(nx, o);
-    if let Some(f) = &o.failure {
-        let reached = o.last_a_over_lambda();
-        let status = format!("stops at a/λ = {reached:.3}: {f}");
-        return Ok((None, status, Some(cost)));
-    }
-    let v: Option<Vec<f64>> = xs
-        .iter()
-        .map(|&x| convergence::p_at(&o.points, x))
-        .collect();
-    let v = v.with_context(|| format!("{at}: the curve of {tier} does not cover the a/λ grid"))?;
-    Ok((Some(v), "ok".into(), Some(cost)))
-}
-
-/// The Richardson tier of the curves `coarse` and `fine` (each with its elements along the
-/// face): the extrapolation on `xs`, or which mesh stopped where. Its cost is the unknowns of
-/// the larger system and the work of both curves.
-fn richardson_values(
-    xs: &[f64],
-    coarse: (&FeOutcome, usize),
-    fine: (&FeOutcome, usize),
-    tier: &Tier,
-    at: &str,
-) -> Result<TierValues> {
-    let (cc, fc) = (fe_cost(coarse.1, coarse.0), fe_cost(fine.1, fine.0));
-    let cost = FeCost {
-        dofs: fc.dofs,
-        load_steps: cc.load_steps + fc.load_steps,
-        newton_iterations: cc.newton_iterations + fc.newton_iterations,
-    };
-    if let Some((o, nx)) = [coarse, fine]
-        .into_iter()
-        .find(|(o, _)| o.failure.is_some())
-    {
-        let reached = o.last_a_over_lambda();
-        let failure = o.failure.as_ref().expect("found by its failure");
-        let status = format!("mesh {nx} stops at a/λ = {reached:.3}: {failure}");
-        return Ok((None, status, Some(cost)));
-    }
-    let v = richardson_tier_values((&coarse.0.points, coarse.1), (&fine.0.points, fine.1), xs)
-        .with_context(|| format!("{at}: the curves of {tier} do not cover the a/λ grid"))?;
-    Ok((Some(v), "ok".into(), Some(cost)))
-}
-
-/// A closed-form tier at (AR, τ_max in MPa): its p̄/E* on `xs`, or why it is unphysical there.
-fn closed_form_values(xs: &[f64], tier: &Tier, ar: f64, tau: f64) -> TierValues {
-    let law = tier.law(ar, tau).expect("a closed-form tier has a law");
-    match xs
-        .iter()
-        .map(|&x| law.physical_p_over_estar(x))
-        .collect::<Result<Vec<f64>, _>>()
-    {
-        Ok(v) => (Some(v), "ok".into(), None),
-        Err(e) => (None, format!("unphysical: {e}"), None),
-    }
 }
 
 /// The footer: how the error and the wall time are measured.
@@ -576,7 +506,7 @@ fn footer(s: &SpeedAccuracyScene, timings: &Timings, timings_name: &str) -> Vec<
             physics.friction_coefficient
         ),
         format!(
-            "Wall time per curve (closed forms: {} points; Richardson: both meshes) from {timings_name}:",
+            "Wall time per curve (closed forms: {} points; extrapolations: all their meshes) from {timings_name}:",
             xs.len()
         ),
     ];
@@ -589,6 +519,12 @@ fn footer(s: &SpeedAccuracyScene, timings: &Timings, timings_name: &str) -> Vec<
             "fe-richardson-C-F: p_F + (p_F − p_C)/((F/C)^q − 1), q = {}, at each a/λ.",
             crate::accuracy::RICHARDSON_TIER_ORDER
         ));
+    }
+    if s.tiers.iter().any(|t| matches!(t, Tier::FeLimit { .. })) {
+        footer.push(
+            "fe-limit-A-B-C: the limit p₀ of p₀ + c₁/n + c₂/n² through meshes n = A, B, C, at each a/λ."
+                .into(),
+        );
     }
     footer
 }
