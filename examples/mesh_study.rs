@@ -19,6 +19,9 @@
 //! override its defaults). Each curve goes to `DIR/arAR_tauT_mN.csv` (DIR by default
 //! `.wavy-tmp/mesh_study`) with its wall time and exit status in `….csv.wall`; a curve already
 //! there is read, not solved again, so the summary can be redone without the solves.
+#[path = "common/child.rs"]
+mod child;
+use child::wait_within;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -71,17 +74,7 @@ fn solve(wavy: &str, case: Case, dir: &Path, timeout: Duration) -> Solved {
             .stderr(Stdio::null())
             .spawn()
             .unwrap_or_else(|e| panic!("cannot run {wavy}: {e}"));
-        let status = loop {
-            if let Some(status) = child.try_wait().expect("wait for a curve") {
-                break Some(status);
-            }
-            if start.elapsed() > timeout {
-                child.kill().expect("stop a curve past its time limit");
-                child.wait().expect("reap a stopped curve");
-                break None;
-            }
-            std::thread::sleep(Duration::from_millis(200));
-        };
+        let status = wait_within(&mut child, start, timeout);
         let rc = status.and_then(|s| s.code()).unwrap_or(124);
         let wall = format!("{},{rc}\n", start.elapsed().as_secs_f64());
         std::fs::write(&wall_file, wall).expect("write a curve's wall time");

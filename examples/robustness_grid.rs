@@ -10,6 +10,9 @@
 //! `--mesh 48,96,160` the meshes, `--tau-max-mpa 0,0.05,…` the columns of τ_max (every one by
 //! default), `--timeout-s 1200` the limit per case: a frictional loop on mesh 160 takes minutes on
 //! one core, docs/verification.md).
+#[path = "common/child.rs"]
+mod child;
+use child::wait_within;
 use rayon::prelude::*;
 use std::io::Read;
 use std::process::{Command, Stdio};
@@ -81,9 +84,6 @@ fn newton_iterations(csv: &str) -> (usize, f64) {
     (its.len(), mean)
 }
 
-/// How often a running case is checked for its end or its time limit.
-const POLL: Duration = Duration::from_millis(200);
-
 fn run(wavy: &str, case: Case, timeout: Duration) -> Outcome {
     let start = Instant::now();
     let mut child = Command::new(wavy)
@@ -108,17 +108,7 @@ fn run(wavy: &str, case: Case, timeout: Duration) -> Outcome {
         let mut s = String::new();
         stderr.read_to_string(&mut s).map(|_| s)
     });
-    let status = loop {
-        if let Some(status) = child.try_wait().expect("wait for a case") {
-            break Some(status);
-        }
-        if start.elapsed() > timeout {
-            child.kill().expect("stop a case past its time limit");
-            child.wait().expect("reap a stopped case");
-            break None;
-        }
-        std::thread::sleep(POLL);
-    };
+    let status = wait_within(&mut child, start, timeout);
     let wall_s = start.elapsed().as_secs_f64();
     let stdout = out_reader
         .join()
