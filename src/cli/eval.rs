@@ -26,8 +26,8 @@ pub struct EvalArgs {
     /// by the fitted polynomials A and B). Required unless --tolerance chooses.
     #[arg(long, value_parser = one_of::<ModelKind>(ModelKind::ALL.map(ModelKind::key)), required_unless_present = "tolerance", conflicts_with = "tolerance")]
     pub model: Option<ModelKind>,
-    /// Instead of --model: the cheapest tier (closed form, finite elements on one mesh, or the
-    /// Richardson extrapolation of two meshes) whose measured
+    /// Instead of --model: the cheapest tier (closed form, finite elements on one mesh, the
+    /// Richardson extrapolation of two meshes or the mesh limit of three) whose measured
     /// largest relative error of p̄/E* at this (AR, τ_max) is at most this (e.g. 0.01); the choice,
     /// its measured error and cost go to stderr (measurements: expected/speed_accuracy.csv).
     /// Forward evaluation only.

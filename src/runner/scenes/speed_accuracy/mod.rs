@@ -1,7 +1,7 @@
 //! The speed–accuracy trade: for each (AR, τ_max), every tier that answers p̄/E*(a/λ) —
 //! Westergaard, WNL with a coefficient set, linear FE, finite-strain FE at several meshes, the
-//! Richardson extrapolation of two of those meshes — with its error against a converged reference
-//! and its cost.
+//! Richardson extrapolation of two of those meshes and the mesh limit of three — with its error
+//! against a converged reference and its cost.
 //!
 //! The reference is the limit of the finite-strain curves on fine meshes (`reference_meshes`),
 //! computed once by `wavy refine-reference` into the file `reference`
