@@ -10,6 +10,7 @@ use crate::models::PressureLaw;
 use crate::runner::requests::input_checks::{a_over_lambda_in_range, out_of_range, InputError};
 use crate::runner::requests::request_error::RequestError;
 use crate::runner::sweep::fe_cases::{FeCase, FePhysics};
+use rayon::prelude::*;
 use std::ops::ControlFlow;
 
 /// The flag of a measured quantity.
@@ -124,29 +125,31 @@ pub fn eval_with_tier(
         return Ok(rows);
     }
     let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let mut curves = vec![];
-    for (kinematics, nx) in tier.fe_curves() {
-        let options = fe::SolveOptions {
-            until_a_over_lambda: hi,
-            mesh: MeshLevel::along_face(nx),
-            ..fe::SolveOptions::default()
-        };
-        let physics = FePhysics {
-            kinematics,
-            ..FePhysics::default()
-        };
-        let case = FeCase::new(&physics, aspect_ratio, tau_max_mpa, options);
-        let curve = fe::solve_curve(&case.problem, &case.options, &mut |_| {
-            ControlFlow::Continue(())
+    // an extrapolating tier's curves are independent: solved side by side
+    let curves: Vec<Vec<CurvePoint>> = (tier.fe_curves().into_par_iter())
+        .map(|(kinematics, nx)| {
+            let options = fe::SolveOptions {
+                until_a_over_lambda: hi,
+                mesh: MeshLevel::along_face(nx),
+                ..fe::SolveOptions::default()
+            };
+            let physics = FePhysics {
+                kinematics,
+                ..FePhysics::default()
+            };
+            let case = FeCase::new(&physics, aspect_ratio, tau_max_mpa, options);
+            fe::solve_curve(&case.problem, &case.options, &mut |_| {
+                ControlFlow::Continue(())
+            })
+            .map(|curve| curve.points)
+            .map_err(|f| {
+                RequestError::Failed(format!(
+                    "{inputs}: the solver stopped on mesh {nx}: {}",
+                    f.error
+                ))
+            })
         })
-        .map_err(|f| {
-            RequestError::Failed(format!(
-                "{inputs}: the solver stopped on mesh {nx}: {}",
-                f.error
-            ))
-        })?;
-        curves.push(curve.points);
-    }
+        .collect::<Result<_, _>>()?;
     let p_at = |x: f64| match tier.is_extrapolated() {
         true => {
             let points: Vec<&[CurvePoint]> = curves.iter().map(|c| c.as_slice()).collect();
