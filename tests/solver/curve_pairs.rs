@@ -1,9 +1,12 @@
 //! Two curves of one problem solved two ways, compared point by point.
 use wavy::fe::{Curve, MeshLevel, NewtonOptions, SolveOptions};
 
-/// The options of a curve on the coarse mesh to a/λ 0.4, solved with Newton's `newton`: the
-/// cheap curve on which a choice of the Newton method is shown to change the path, not the curve.
-pub(crate) fn coarse_to_0_4(newton: NewtonOptions) -> SolveOptions {
+/// The options of a curve on the coarse mesh to a/λ 0.4, Newton's default options changed by
+/// `choose`: the cheap curve on which a choice of the Newton method is shown to change the path,
+/// not the curve.
+pub(crate) fn coarse_to_0_4(choose: impl FnOnce(&mut NewtonOptions)) -> SolveOptions {
+    let mut newton = NewtonOptions::default();
+    choose(&mut newton);
     SolveOptions {
         mesh: MeshLevel::Coarse,
         until_a_over_lambda: 0.4,

@@ -105,9 +105,7 @@ fn block_slides_at_tau_max_when_orowan_governs() {
     assert!((l - 1.0).abs() < 1e-3, "face length / width = {l}");
 }
 
-use wavy::fe::{
-    solve_curve, Curve, Interface, LayerProblem, MeshLevel, NewtonOptions, SolveOptions,
-};
+use wavy::fe::{solve_curve, Curve, Interface, LayerProblem, MeshLevel, SolveOptions};
 
 fn wavy_curve(ar: f64, tau_max_over_estar: f64, mesh: MeshLevel) -> Curve {
     let opts = SolveOptions {
@@ -143,12 +141,7 @@ fn curve_with_band(
 /// counts it prints are recorded in docs/performance.md).
 #[test]
 fn semismooth_branch_choice_changes_the_path_not_the_curve() {
-    let opts = |semismooth_friction| {
-        coarse_to_0_4(NewtonOptions {
-            semismooth_friction,
-            ..Default::default()
-        })
-    };
+    let opts = |semismooth_friction| coarse_to_0_4(|n| n.semismooth_friction = semismooth_friction);
     let (with, without) = (
         curve_with(0.3, 0.2, &opts(true)),
         curve_with(0.3, 0.2, &opts(false)),
@@ -181,12 +174,7 @@ fn semismooth_branch_choice_changes_the_path_not_the_curve() {
 /// largest difference), in fewer Newton iterations (counted, deterministic; printed).
 #[test]
 fn returning_into_the_band_changes_the_path_not_the_curve() {
-    let opts = |return_into_band| {
-        coarse_to_0_4(NewtonOptions {
-            return_into_band,
-            ..Default::default()
-        })
-    };
+    let opts = |return_into_band| coarse_to_0_4(|n| n.return_into_band = return_into_band);
     let iterations = |c: &Curve| c.points.iter().map(|p| p.newton_iterations).sum::<usize>();
     for tau_max_over_estar in [0.1, 0.2] {
         let with = curve_with(0.3, tau_max_over_estar, &opts(true));
@@ -214,10 +202,7 @@ fn returning_into_the_band_changes_the_path_not_the_curve() {
 #[test]
 fn exact_stick_decision_stiffness_changes_the_path_not_the_curve() {
     let opts = |stick_decision_stiffness| {
-        coarse_to_0_4(NewtonOptions {
-            stick_decision_stiffness,
-            ..Default::default()
-        })
+        coarse_to_0_4(|n| n.stick_decision_stiffness = stick_decision_stiffness)
     };
     let soft = curve_with_band(0.3, 0.1, 0.0, &opts(0.1));
     let default = curve_with_band(0.3, 0.1, 0.0, &opts(1.0));

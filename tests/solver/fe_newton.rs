@@ -100,12 +100,7 @@ fn frictionless_unloading_takes_the_loading_iterations() {
 /// has the frictional curves it shortens and those it lengthens).
 #[test]
 fn the_pressure_iterate_changes_the_path_not_the_curve() {
-    let opts = |pressure_iterate| {
-        coarse_to_0_4(NewtonOptions {
-            pressure_iterate,
-            ..Default::default()
-        })
-    };
+    let opts = |pressure_iterate| coarse_to_0_4(|n| n.pressure_iterate = pressure_iterate);
     let frictional = frictional_ar_0_3();
     for problem in [wavy::defaults::layer_problem(0.3), frictional] {
         let (with, without) = (curve(&problem, &opts(true)), curve(&problem, &opts(false)));

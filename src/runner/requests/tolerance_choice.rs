@@ -150,12 +150,10 @@ pub fn eval_with_tier(
             })
         })
         .collect::<Result<_, _>>()?;
+    let points: Vec<&[CurvePoint]> = curves.iter().map(|c| c.as_slice()).collect();
     let p_at = |x: f64| match tier.is_extrapolated() {
-        true => {
-            let points: Vec<&[CurvePoint]> = curves.iter().map(|c| c.as_slice()).collect();
-            extrapolated_tier_values(&tier, &points, &[x]).map(|v| v[0])
-        }
-        false => fe::convergence::p_at(&curves[0], x),
+        true => extrapolated_tier_values(&tier, &points, &[x]).map(|v| v[0]),
+        false => fe::convergence::p_at(points[0], x),
     };
     for &x in xs {
         let p = p_at(x).ok_or_else(|| {

@@ -160,13 +160,11 @@ impl SpeedAccuracyScene {
                     "each tier once".into(),
                 ));
             }
-            let meshes: Vec<Tier> = (t.fe_curves().into_iter())
-                .filter(|_| t.is_extrapolated())
-                .map(|(kinematics, elements_along_face)| Tier::Fe {
-                    kinematics,
-                    elements_along_face,
-                })
-                .collect();
+            // an extrapolating tier's timed tiers are its meshes
+            let meshes = match t.is_extrapolated() {
+                true => t.timed_tiers(),
+                false => vec![],
+            };
             if meshes.iter().any(|mesh| !self.tiers.contains(mesh)) {
                 let names: Vec<String> = meshes.iter().map(Tier::name).collect();
                 return Err(v.invalid(
