@@ -76,6 +76,7 @@ pub use model::mesh::{Grading, MeshLevel, MeshLevelParseError};
 pub use options::{ContactOptions, NewtonOptions, SolveOptions, StepOptions};
 pub use stepping::loading::Stepping;
 pub use stepping::step_state::StepState;
+pub use stepping::touched_hold::TouchedNodes;
 
 use serde::{Deserialize, Serialize};
 

@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use crate::fe::contact::edge_rule::EdgeRule;
 use crate::fe::model::mesh::{Grading, MeshLevel};
 use crate::fe::stepping::loading::Stepping;
+use crate::fe::stepping::touched_hold::TouchedNodes;
 
 /// The options of a solve: the curve's stop targets, its mesh, and the numerical settings by
 /// concern.
@@ -114,6 +115,14 @@ pub struct StepOptions {
     pub max_edge_iterations: usize,
     /// Use the tangent (Euler) predictor (else extrapolate the last increment).
     pub tangent_predictor: bool,
+    /// Under the penalty friction law, how the load tangent treats the contact-face nodes that
+    /// have just touched: held where they touched (the default), or free to slide as the
+    /// consistent tangent has them at zero normal force
+    /// ([`crate::fe::stepping::touched_hold`]). It changes the Newton path, not the converged
+    /// state (test `holding_the_touched_node_in_the_tangent_changes_the_path_not_the_curve`;
+    /// docs/performance.md, "the node that has just touched").
+    #[serde(default)]
+    pub touched_nodes: TouchedNodes,
     /// Unloading steps per loading step (≥ 1): the unloading branch retraces the loading
     /// events' slab displacements, each interval in this many equal steps. The friction
     /// history of a loop is integrated at first order in the step, so the dissipation converges
@@ -125,10 +134,10 @@ pub struct StepOptions {
 impl StepOptions {
     /// The target advance of `a/λ` per load step on a model with (`frictional`) or without
     /// friction: [`Self::da_target`] without; 0, node by node, with. A frictional curve's
-    /// history is integrated from one load step to the next, and nodes that close inside a step
-    /// make both the history and the Newton solve coarser: steps of 0.01 move a frictional curve
-    /// by more than its discretisation error, at more Newton iterations (docs/performance.md,
-    /// "steps over several nodes").
+    /// history is where each node was anchored when it touched: a step that ends on a node's
+    /// touchdown anchors it exactly, one that passes it only where the prediction puts it, and
+    /// steps of 0.01 so anchored move a frictional curve by more than its discretisation error
+    /// (docs/performance.md, "the anchors of the nodes it passes").
     pub fn da_target_for(&self, frictional: bool) -> f64 {
         if frictional {
             0.0
@@ -154,6 +163,7 @@ impl Default for StepOptions {
             bordered_edge_solve: true,
             max_edge_iterations: 60,
             tangent_predictor: true,
+            touched_nodes: TouchedNodes::Held,
             unloading_substeps: one_substep(),
         }
     }

@@ -237,6 +237,7 @@ mod tests {
     use crate::fe::model::{Model, State};
     use crate::fe::stepping::predictor::{load_tangent, predictor};
     use crate::fe::stepping::test_fixtures::loaded_sinusoid;
+    use crate::fe::stepping::touched_hold::TouchedNodes;
 
     /// Each element's `κ (v/V − 1)` at `st`.
     fn condensed(model: &Model, st: &State) -> Vec<f64> {
@@ -270,7 +271,8 @@ mod tests {
                 .position(|s| edge_x(&model, s) >= target)
                 .expect("an event beyond the target");
             let (from, next) = (&states[i], &states[i + 1]);
-            let tangent = load_tangent(&model, &mut asm, from).expect("a converged state");
+            let tangent = load_tangent(&model, &mut asm, from, TouchedNodes::Held)
+                .expect("a converged state");
             let dd = next.d - from.d;
             let predicted =
                 predictor(&model, from, None, dd, Some(&tangent)).expect("not inverted");

@@ -6,7 +6,8 @@
 //! [`event_search`] finds which node touches next and at which slab displacement,
 //! [`node_events`] the same for a contact in several patches (profiles), and
 //! [`release_events`] where a contact node lets go; [`step_control`] holds the one regula falsi
-//! and the step cutter; [`predictor`] the load tangent and the predicted state of a step;
+//! and the step cutter; [`predictor`] the load tangent and the predicted state of a step, [`touched_hold`] the nodes that have
+//! just touched held in it;
 //! [`step_state`] the deformed state of every converged point, built only for a caller that
 //! asks; `test_fixtures` the fixtures of their unit tests.
 
@@ -21,4 +22,5 @@ pub mod step_control;
 pub mod step_state;
 #[cfg(test)]
 pub(crate) mod test_fixtures;
+pub mod touched_hold;
 pub mod unloading;

@@ -21,6 +21,7 @@ use crate::fe::error::StepFail;
 use crate::fe::model::{Model, State};
 use crate::fe::newton::active_set::{equilibrate, Hold};
 use crate::fe::newton::assembly::Assembly;
+use crate::fe::stepping::touched_hold::{TouchedHold, TouchedNodes};
 use crate::fe::{Kinematics, SolveOptions};
 
 /// The difference step of the path's second derivative over the indenter amplitude `Δ`: its
@@ -67,19 +68,34 @@ impl std::ops::Deref for LoadTangent {
 
 /// `∂q/∂d` at a converged state, `K ∂q/∂d = −∂r/∂d`, and under finite kinematics
 /// `∂²q/∂d²` ([`path_curvature`]), with friction on the pieces of the law the state lies on
-/// ([`SmoothPieces`]); `None` if the state is inverted or the solve fails. Under linear
-/// kinematics the frictionless path is straight between two events (the Euler predictor is exact
-/// there, and a difference quotient would only add its round-off). Under exact stick the Euler
-/// predictor is used: the second-order one cost more Newton iterations there (AR 0.3, τ_max
-/// 0.1 MPa, mesh 48: 17.3 to 25.6 per point at μ 1, 13.3 to 16.9 at μ 10⁻⁶; docs/performance.md).
-pub(crate) fn load_tangent(model: &Model, asm: &mut Assembly, st: &State) -> Option<LoadTangent> {
+/// ([`SmoothPieces`]) and the nodes that have just touched as `touched` says ([`TouchedHold`]:
+/// held, both derivatives taken along the held path); `None` if the state is inverted or the
+/// solve fails. Under linear kinematics the frictionless path is straight between two events
+/// (the Euler predictor is exact there, and a difference quotient would only add its
+/// round-off). Under exact stick the Euler predictor is used: the second-order one cost more
+/// Newton iterations there (AR 0.3, τ_max 0.1 MPa, mesh 48: 17.3 to 25.6 per point at μ 1,
+/// 13.3 to 16.9 at μ 10⁻⁶; docs/performance.md).
+pub(crate) fn load_tangent(
+    model: &Model,
+    asm: &mut Assembly,
+    st: &State,
+    touched: TouchedNodes,
+) -> Option<LoadTangent> {
     let f = asm.assemble(model, st, true)?;
-    let mut rhs = [f.dresid_dd.iter().map(|v| -v).collect::<Vec<f64>>()];
+    let hold = TouchedHold::at(model, st, touched);
+    let mut rhs = vec![f.dresid_dd.iter().map(|v| -v).collect::<Vec<f64>>()];
+    rhs.extend(hold.unit_loads(f.dresid_dd.len()));
     asm.sys.solve(&mut rhs).ok()?;
-    let [rate] = rhs;
+    let mut rate = rhs.remove(0);
+    let eps = CURVATURE_STEP_OVER_AMPLITUDE * model.indenter.amplitude();
+    let hold = (hold.with_responses(rhs)).limited_by_friction(model, asm, (st, &rate), eps)?;
+    hold.hold_rate(&mut rate);
     let exact_stick = model.friction.is_some_and(|law| law.exact_stick());
     let curvature = match (model.kin, exact_stick) {
-        (Kinematics::Finite, false) => path_curvature(model, asm, st, &rate),
+        (Kinematics::Finite, false) => path_curvature(model, asm, st, &rate).map(|mut w| {
+            hold.hold_curvature(&mut w);
+            w
+        }),
         _ => None,
     };
     Some(LoadTangent {
@@ -186,7 +202,7 @@ pub(crate) fn tangent_at(
 ) -> Option<LoadTangent> {
     opts.steps
         .tangent_predictor
-        .then(|| load_tangent(model, asm, st))
+        .then(|| load_tangent(model, asm, st, opts.steps.touched_nodes))
         .flatten()
 }
 
@@ -397,7 +413,8 @@ mod tests {
     #[test]
     fn the_predictor_is_second_order_along_the_path() {
         let (model, mut asm, before, last) = loaded();
-        let tangent = load_tangent(&model, &mut asm, &last).expect("a converged state");
+        let tangent =
+            load_tangent(&model, &mut asm, &last, TouchedNodes::Held).expect("a converged state");
         assert!(
             tangent.curvature().is_some(),
             "frictionless: the curvature is computed"
@@ -436,7 +453,8 @@ mod tests {
         frictionless.friction = None;
         let mut frictionless_asm = Assembly::new(&frictionless);
         let curvature = |model: &Model, asm: &mut Assembly| {
-            let tangent = load_tangent(model, asm, last).expect("a converged state");
+            let tangent =
+                load_tangent(model, asm, last, TouchedNodes::Held).expect("a converged state");
             tangent.curvature().expect("finite kinematics").to_vec()
         };
         let reference = curvature(&frictionless, &mut frictionless_asm);
@@ -446,7 +464,7 @@ mod tests {
             gap.fold(0.0, f64::max) / scale
         };
         let smooth = apart(&curvature(&model, &mut asm));
-        let rate = load_tangent(&model, &mut asm, last)
+        let rate = load_tangent(&model, &mut asm, last, TouchedNodes::Held)
             .expect("converged")
             .rate;
         let as_they_are = SmoothPieces {
@@ -479,9 +497,11 @@ mod tests {
     fn the_third_order_term_measured_on_a_step_predicts_the_next() {
         let (model, mut asm, _, states) = loaded_sinusoid(0.3, 0.2);
         let [first, second, third] = [3, 2, 1].map(|back| states[states.len() - back].clone());
-        let tangent_first = load_tangent(&model, &mut asm, &first).expect("a converged state");
+        let tangent_first =
+            load_tangent(&model, &mut asm, &first, TouchedNodes::Held).expect("a converged state");
         let term = third_order_term(&model, &first, &tangent_first, &second).expect("a term");
-        let tangent = load_tangent(&model, &mut asm, &second).expect("a converged state");
+        let tangent =
+            load_tangent(&model, &mut asm, &second, TouchedNodes::Held).expect("a converged state");
         let dd = third.d - second.d;
         let without = predictor(&model, &second, None, dd, Some(&tangent)).expect("not inverted");
         let tangent = tangent.with_third_order(Some(term.clone()));

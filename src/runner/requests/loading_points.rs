@@ -32,7 +32,7 @@ pub struct FeCurve {
 /// The finite-element loading points of `curve`: `asked`, checked (in range, and only for a
 /// frictionless sinusoid), or for a frictionless sinusoid loaded only, [`DEFAULT_FE_POINTS`];
 /// `None`, node by node, otherwise. A frictional curve steps node by node (its friction history
-/// is integrated step by step, [`crate::fe::StepOptions::da_target_for`]); a profile's steps
+/// is where each node touched, [`crate::fe::StepOptions::da_target_for`]); a profile's steps
 /// are its contact events, patches born and merging wherever they come; a loop unloads through
 /// its loading steps, and an unloading step across several nodes' releases costs Newton
 /// several times the iterations (docs/performance.md, "frictionless steps over several nodes").
@@ -49,7 +49,7 @@ pub fn fe_points(asked: Option<usize>, curve: FeCurve) -> Result<Option<usize>, 
     };
     if curve.frictional {
         return Err(refused(
-            "is for a frictionless curve; a frictional one steps node by node, its friction history integrated from step to step",
+            "is for a frictionless curve; a frictional one steps node by node, each node's friction anchored where it touches",
         ));
     }
     if curve.profile {
