@@ -1,8 +1,9 @@
 //! Time per full load curve (first contact to a/λ = 0.45) at each mesh level and at
 //! 64 × 32 (a level between default and fine), finite
 //! kinematics, AR = 0.1 and AR = 0.3, κ/G = 1000; the linear curve at the default mesh
-//! (AR = 0.1); and frictional curves at the default mesh (μ = 1, τ_max/E* = 0.2, the
-//! costliest panels of Fig. 3). Before the timings, the peak memory of one curve per AR
+//! (AR = 0.1); frictional curves at the default mesh (μ = 1, τ_max/E* = 0.2, the
+//! costliest panels of Fig. 3); and AR 0.3, τ_max/E* = 0.1 at the default mesh with the node
+//! that has just touched held in the load tangent and free. Before the timings, the peak memory of one curve per AR
 //! and mesh level is printed: each curve runs in a fresh child process (this bench
 //! binary re-invoked with `WAVY_BENCH_CURVE=AR,level`), which reports its `VmHWM` from
 //! `/proc/self/status`.
@@ -21,6 +22,19 @@ fn curve(ar: f64, kin: Kinematics, mesh: MeshLevel) -> usize {
 }
 
 fn frictional_curve(ar: f64, kin: Kinematics, mesh: MeshLevel, tau_max_over_estar: f64) -> usize {
+    let opts = SolveOptions {
+        mesh,
+        ..Default::default()
+    };
+    frictional_curve_with(ar, kin, tau_max_over_estar, &opts)
+}
+
+fn frictional_curve_with(
+    ar: f64,
+    kin: Kinematics,
+    tau_max_over_estar: f64,
+    opts: &SolveOptions,
+) -> usize {
     let pb = LayerProblem {
         kinematics: kin,
         interface: Interface::coulomb_orowan(
@@ -30,11 +44,7 @@ fn frictional_curve(ar: f64, kin: Kinematics, mesh: MeshLevel, tau_max_over_esta
         ),
         ..wavy::defaults::layer_problem(ar)
     };
-    let opts = SolveOptions {
-        mesh,
-        ..Default::default()
-    };
-    solve_curve(&pb, &opts, &mut |_| ControlFlow::Continue(()))
+    solve_curve(&pb, opts, &mut |_| ControlFlow::Continue(()))
         .expect("curve")
         .points
         .len()
@@ -113,6 +123,18 @@ fn bench(c: &mut Criterion) {
                     0.2,
                 ))
             })
+        });
+    }
+    g.finish();
+    // the node that has just touched held in the load tangent, or free as before
+    // (`StepOptions::touched_nodes`; docs/performance.md, "the node that has just touched")
+    let mut g = c.benchmark_group("friction_tau0.1_touched_node");
+    g.sample_size(10);
+    for (name, touched) in [("held", TouchedNodes::Held), ("free", TouchedNodes::Free)] {
+        let mut opts = SolveOptions::default();
+        opts.steps.touched_nodes = touched;
+        g.bench_function(format!("finite_default_ar0.3_{name}"), |b| {
+            b.iter(|| black_box(frictional_curve_with(0.3, Kinematics::Finite, 0.1, &opts)))
         });
     }
     g.finish();
