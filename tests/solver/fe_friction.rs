@@ -227,7 +227,8 @@ fn loop_with(ar: f64, tau_max_over_estar: f64, opts: &SolveOptions) -> Curve {
 }
 
 /// The largest relative difference of p̄/E* between the unloading points of `a` and `b`, which
-/// must have the same points (asserted).
+/// must have the same points (asserted); each relative to `b`'s p̄/E*, at least 10⁻¹² (a loop
+/// ends at zero load).
 fn largest_unloading_difference(a: &Curve, b: &Curve) -> f64 {
     assert_eq!(a.unloading.len(), b.unloading.len(), "the unloading points");
     (a.unloading.iter().zip(&b.unloading))

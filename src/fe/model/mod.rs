@@ -506,6 +506,15 @@ impl Model {
         st
     }
 
+    /// `st` carried along the load path's direction `rate` (slot-wise, per unit slab
+    /// displacement) to the slab displacement `st.d + dd`: the slab moved, then [`Self::updated`].
+    pub fn along(&self, st: &State, rate: &[f64], dd: f64) -> State {
+        let mut moved = st.clone();
+        moved.d = st.d + dd;
+        self.enforce_constraints(&mut moved);
+        self.updated(&moved, rate, dd)
+    }
+
     /// Move contact-face node `k` (about to be activated) to the closest point of the
     /// indenter (finite kinematics; a few Newton steps on
     /// `(x − x₀) + (y_s(x) − y₀) y_s'(x) = 0`). A vertical projection would distort the

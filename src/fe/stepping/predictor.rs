@@ -30,6 +30,12 @@ use crate::fe::{Kinematics, SolveOptions};
 /// falls as `dd³` over the steps of a curve (test `the_predictor_is_second_order_along_the_path`).
 const CURVATURE_STEP_OVER_AMPLITUDE: f64 = 1e-4;
 
+/// The step of the slab displacement over which the path's derivatives are taken as
+/// difference quotients ([`CURVATURE_STEP_OVER_AMPLITUDE`] times the amplitude `Δ`).
+fn difference_step(model: &Model) -> f64 {
+    CURVATURE_STEP_OVER_AMPLITUDE * model.indenter.amplitude()
+}
+
 /// The load path at a converged state: `∂q/∂d` (slot-wise, the load tangent) and, where it
 /// could be computed, `∂²q/∂d²`, with the third-order term the last step measured, if any.
 /// Dereferences to `∂q/∂d`.
@@ -87,7 +93,7 @@ pub(crate) fn load_tangent(
     rhs.extend(hold.unit_loads(f.dresid_dd.len()));
     asm.sys.solve(&mut rhs).ok()?;
     let mut rate = rhs.remove(0);
-    let eps = CURVATURE_STEP_OVER_AMPLITUDE * model.indenter.amplitude();
+    let eps = difference_step(model);
     let hold = (hold.with_responses(rhs)).limited_by_friction(model, asm, (st, &rate), eps)?;
     hold.hold_rate(&mut rate);
     let exact_stick = model.friction.is_some_and(|law| law.exact_stick());
@@ -121,13 +127,9 @@ fn curvature_on(
     pieces: &SmoothPieces,
     rate: &[f64],
 ) -> Option<Vec<f64>> {
-    let eps = CURVATURE_STEP_OVER_AMPLITUDE * model.indenter.amplitude();
-    let d = pieces.state.d;
+    let eps = difference_step(model);
     let mut along = |step: f64| {
-        let mut moved = pieces.state.clone();
-        moved.d = d + step;
-        model.enforce_constraints(&mut moved);
-        let moved = model.updated(&moved, rate, step);
+        let moved = model.along(&pieces.state, rate, step);
         pieces.residual(model, asm, &moved)
     };
     let (here, plus, minus) = (along(0.0)?, along(eps)?, along(-eps)?);
@@ -267,10 +269,7 @@ pub(crate) fn predictor(
 /// The Euler and (where `tangent` has the curvature) second-order Taylor states at the slab
 /// displacement `cur.d + dd`, constraints not yet enforced on the step.
 fn taylor(model: &Model, cur: &State, dd: f64, tangent: &LoadTangent) -> (State, Option<State>) {
-    let mut st = cur.clone();
-    st.d = cur.d + dd;
-    model.enforce_constraints(&mut st);
-    let euler = model.updated(&st, tangent, dd);
+    let euler = model.along(cur, tangent, dd);
     let second = (tangent.curvature.as_ref()).map(|w| model.updated(&euler, w, 0.5 * dd * dd));
     (euler, second)
 }

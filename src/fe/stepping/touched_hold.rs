@@ -112,10 +112,7 @@ impl TouchedHold {
             let mut path = rate.to_vec();
             self.slide(&mut path);
             let reactions = self.remove_held(&mut path);
-            let mut ahead = st.clone();
-            ahead.d += eps;
-            model.enforce_constraints(&mut ahead);
-            let after = normal_at(asm, &model.updated(&ahead, &path, eps))?;
+            let after = normal_at(asm, &model.along(st, &path, eps))?;
             let mut slides = false;
             for (i, &(k, slot)) in self.nodes.iter().enumerate() {
                 let w = map[slot / 2][0].map_or(1.0, |[a, b]| a.hypot(b));
