@@ -137,6 +137,10 @@ pub struct SlipHistory {
     /// node that is free or has just touched): where the next step's work of friction starts
     /// ([`FrictionLaw::commit`]).
     pub force: f64,
+    /// The node was in contact at the last converged step. Such a node, released by an
+    /// active-set pass of the next step and put back in contact before the step converges,
+    /// keeps this history ([`crate::fe::model::Model::activate`]).
+    pub in_contact: bool,
 }
 
 impl SlipHistory {
@@ -149,6 +153,7 @@ impl SlipHistory {
             anchor_x: x,
             held: Branch::Stick,
             force: 0.0,
+            in_contact: false,
         }
     }
 
@@ -353,6 +358,7 @@ impl FrictionLaw {
             elastic: trial_slip.clamp(-self.slip_c, self.slip_c),
             held: history.held,
             force,
+            in_contact: true,
             ..SlipHistory::fresh(x)
         };
         (committed, work)

@@ -409,11 +409,14 @@ impl Model {
     }
 
     /// Put contact-face node `k` in contact: mark it active, move it to its closest point
-    /// on the indenter, and start its friction history there with no elastic slip.
+    /// on the indenter, and start its friction history there with no elastic slip, unless it
+    /// was in contact at the last converged step (released and put back within one load step,
+    /// [`SlipHistory::in_contact`]), which keeps its committed history: a step's converged state
+    /// does not depend on the order in which the active-set passes changed its contact set.
     pub fn activate(&self, st: &mut State, k: usize) {
         st.active[k] = true;
         self.project_closest(st, k);
-        if self.friction.is_some() {
+        if self.friction.is_some() && !st.slip[k].in_contact {
             st.slip[k] = SlipHistory::fresh(st.x[self.mesh.bottom[k]][0]);
         }
     }
