@@ -98,6 +98,32 @@ pub(crate) fn release_forces(model: &Model, st: &State, grad: &[f64]) -> Vec<f64
     }
 }
 
+/// Releases the contact patches' edge nodes of `st` (active, with a free neighbour on the face)
+/// whose release force ([`release_forces`]) fails the active-set passes' release test
+/// (`multiplier_rtol`); nothing where `st` is inverted. For an unloading step's predicted state
+/// ([`crate::fe::stepping::predictor::unloading_step`]).
+pub(crate) fn release_tensile_edges(
+    model: &Model,
+    asm: &mut Assembly,
+    opts: &SolveOptions,
+    st: &mut State,
+) {
+    let Some(f) = asm.assemble(model, st, false) else {
+        return;
+    };
+    let release_force = release_forces(model, st, &f.grad);
+    let threshold = -opts.contact.multiplier_rtol * release_scale(&release_force);
+    let n = st.active.len();
+    let free = |k: Option<usize>| k.is_some_and(|k| k < n && !st.active[k]);
+    let edge = |k: usize| st.active[k] && (free(k.checked_sub(1)) || free(Some(k + 1)));
+    let tensile: Vec<usize> = (0..n)
+        .filter(|&k| edge(k) && release_force[k] < threshold)
+        .collect();
+    for k in tensile {
+        st.active[k] = false;
+    }
+}
+
 /// The scale of the release test: the largest magnitude of `release_force`
 /// ([`release_forces`]), at least [`MULTIPLIER_SCALE_FLOOR`].
 pub(crate) fn release_scale(release_force: &[f64]) -> f64 {

@@ -4,11 +4,11 @@
 use crate::fe::contact::measure::{measure_between_events, Measured};
 use crate::fe::error::{CurveFailure, SolveError, StepFail};
 use crate::fe::model::{Model, State};
-use crate::fe::newton::active_set::{release_forces, release_scale, Hold};
+use crate::fe::newton::active_set::{release_forces, release_scale};
 use crate::fe::newton::assembly::Assembly;
 use crate::fe::stepping::load_path::LoadPath;
 use crate::fe::stepping::loading::loading_branch;
-use crate::fe::stepping::predictor::displacement_step;
+use crate::fe::stepping::predictor::unloading_step;
 use crate::fe::stepping::step_control::{StepCuts, STEP_CUT_FACTOR};
 use crate::fe::stepping::step_state::Converged;
 use crate::fe::{Curve, CurvePoint, LoadDirection, SolveOptions};
@@ -40,9 +40,9 @@ pub(crate) fn trace_cycle(
 /// steps, [`retraced_displacements`]), then to `d = 0`, so that a frictionless (reversible) cycle revisits the loading
 /// states and the two branches can be compared point by point. Each step (from its base with
 /// the nodes that carry no force released, [`released_at_zero_force`]) predicts along the load
-/// tangent, equilibrates (nodes whose normal force turns tensile are released, the
-/// return mapping carries the slip history, committed after every step;
-/// [`displacement_step`]) and is measured with the edge in the last loaded element, as at the
+/// tangent, releases the contact edges tensile at the prediction, equilibrates (nodes whose
+/// normal force turns tensile are released, the return mapping carries the slip history,
+/// committed after every step; [`unloading_step`]) and is measured with the edge in the last loaded element, as at the
 /// loading events ([`measure_between_events`]). A step that fails is approached through
 /// intermediate displacements (the remaining increment halved, at most `max_step_cuts` times
 /// in a row and never below the first event's increment cut as often, [`StepCuts`]) that serve as initial guesses only: the slip history is committed,
@@ -76,7 +76,7 @@ fn unload(
         // exactly the target, so that a reversible cycle revisits the loading displacements
         let released = released_at_zero_force(model, asm, retraction.base(path));
         let base = released.as_ref().unwrap_or(retraction.base(path));
-        let step = displacement_step(model, asm, opts, base, d, Hold::NONE);
+        let step = unloading_step(model, asm, opts, base, d);
         match step {
             Ok((mut st, iterations)) if scheduled => {
                 asm.commit_slip(model, &mut st);
@@ -339,7 +339,7 @@ fn unloading_cuts(opts: &SolveOptions, smallest_increment: f64) -> StepCuts {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fe::newton::active_set::equilibrate;
+    use crate::fe::newton::active_set::{equilibrate, Hold};
     use crate::fe::stepping::predictor::{predictor, tangent_at};
     use crate::fe::stepping::test_fixtures::loaded_sinusoid_with;
     use crate::fe::Interface;
