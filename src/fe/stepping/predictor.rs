@@ -437,7 +437,9 @@ impl Step<'_> {
 mod tests {
     use super::*;
     use crate::fe::newton::inf_norm;
-    use crate::fe::stepping::test_fixtures::{loaded_sinusoid, loaded_sinusoid_with};
+    use crate::fe::stepping::test_fixtures::{
+        largest_distance, loaded_sinusoid, loaded_sinusoid_with,
+    };
     use crate::fe::Interface;
 
     /// The last two converged states of the frictionless AR 0.3 sinusoid on the coarse mesh
@@ -535,13 +537,6 @@ mod tests {
         assert!(raw > 1.0, "the raw quotient: {raw:e}");
     }
 
-    /// The largest distance (units of λ) of a node of `predicted` from its place in `reached`.
-    fn position_error(predicted: &State, reached: &State) -> f64 {
-        (predicted.x.iter().zip(&reached.x))
-            .map(|(p, r)| (p[0] - r[0]).abs().max((p[1] - r[1]).abs()))
-            .fold(0.0, f64::max)
-    }
-
     /// The third-order term measured on one step between events predicts the next, on the coarse
     /// mesh at a/λ 0.2: the next event's nodes lie closer to the prediction with it than without
     /// it (measured: 6.7e-5 λ against 1.1e-4 λ at the farthest node; asserted at 0.75 of it), and a
@@ -563,8 +558,8 @@ mod tests {
         let tangent = tangent.with_third_order(Some(term.clone()));
         let with = predictor(&model, &second, None, dd, Some(&tangent)).expect("not inverted");
         let (error_with, error_without) = (
-            position_error(&with, &third),
-            position_error(&without, &third),
+            largest_distance(&with, &third),
+            largest_distance(&without, &third),
         );
         println!("next event: {error_with:e} with the term, {error_without:e} without");
         assert!(
@@ -574,7 +569,7 @@ mod tests {
         let own = tangent_first.with_third_order(Some(term));
         let again =
             predictor(&model, &first, None, second.d - first.d, Some(&own)).expect("not inverted");
-        let error_own = position_error(&again, &second);
+        let error_own = largest_distance(&again, &second);
         assert!(error_own < 1e-12, "its own step: {error_own:e}");
     }
 }

@@ -1,4 +1,5 @@
-//! The fixtures of the stepping's unit tests: a sinusoid on the coarse mesh, loaded.
+//! The fixtures of the stepping's unit tests: a sinusoid on the coarse mesh, loaded, and the distance
+//! between two states.
 
 use crate::fe::model::{Model, State};
 use crate::fe::newton::assembly::Assembly;
@@ -34,4 +35,11 @@ pub(crate) fn loaded_sinusoid_with(
     })
     .unwrap_or_else(|f| panic!("the coarse AR {aspect_ratio} curve: {}", f.error));
     (model, asm, opts, states)
+}
+
+/// The largest distance (units of λ, the larger coordinate) of a node of `a` from its place in `b`.
+pub(crate) fn largest_distance(a: &State, b: &State) -> f64 {
+    (a.x.iter().zip(&b.x))
+        .map(|(p, q)| (p[0] - q[0]).abs().max((p[1] - q[1]).abs()))
+        .fold(0.0, f64::max)
 }

@@ -340,9 +340,15 @@ fn unloading_cuts(opts: &SolveOptions, smallest_increment: f64) -> StepCuts {
 mod tests {
     use super::*;
     use crate::fe::newton::active_set::{equilibrate, Hold};
-    use crate::fe::stepping::predictor::{predictor, tangent_at};
-    use crate::fe::stepping::test_fixtures::loaded_sinusoid_with;
+    use crate::fe::stepping::predictor::{displacement_step, predictor, tangent_at};
+    use crate::fe::stepping::test_fixtures::{largest_distance, loaded_sinusoid_with};
     use crate::fe::Interface;
+
+    /// The coarse AR 0.3 sinusoid with τ_max/E* 0.1 and μ 1, loaded to a/λ 0.3 event by event.
+    fn loaded_with_friction() -> (Model, Assembly, SolveOptions, Vec<State>) {
+        let interface = Interface::coulomb_orowan(1.0, 0.1, 0.005);
+        loaded_sinusoid_with(0.3, 0.3, interface)
+    }
 
     /// A frictional step's converged state does not depend on the order in which its contact
     /// set changed. Coarse AR 0.3, τ_max/E* 0.1, loaded to a/λ 0.3 and pressed a twentieth of
@@ -352,8 +358,7 @@ mod tests {
     /// apart by 3.7e-15 λ, asserted 1e-12 λ; started afresh on its return, 7.2e-3 λ).
     #[test]
     fn a_node_released_and_put_back_within_a_step_keeps_its_history() {
-        let interface = Interface::coulomb_orowan(1.0, 0.1, 0.005);
-        let (model, mut asm, opts, states) = loaded_sinusoid_with(0.3, 0.3, interface);
+        let (model, mut asm, opts, states) = loaded_with_friction();
         let [before, loaded] = [2, 1].map(|back| &states[states.len() - back]);
         let d = loaded.d + 0.05 * (loaded.d - before.d);
         let tangent = tangent_at(&model, &mut asm, &opts, loaded);
@@ -379,9 +384,7 @@ mod tests {
         let node = edge.expect("contact") - 1;
         let put_back = step(&mut asm, Some(node));
         assert_eq!(put_back.active, throughout.active);
-        let apart = (throughout.x.iter().zip(&put_back.x))
-            .map(|(a, b)| (a[0] - b[0]).abs().max((a[1] - b[1]).abs()))
-            .fold(0.0, f64::max);
+        let apart = largest_distance(&throughout, &put_back);
         let [normal, tangential] = [
             model.normal_forces(&throughout, &grad),
             model.tangential_forces(&throughout, &grad),
@@ -390,15 +393,6 @@ mod tests {
         println!("node {node} (N {n:.3e}, T {t:.3e} G λ): the two steps apart by {apart:.2e} λ");
         assert!(apart < 1e-12, "apart by {apart:.3e} λ");
     }
-}
-
-#[cfg(test)]
-mod edge_release_tests {
-    use super::*;
-    use crate::fe::newton::active_set::Hold;
-    use crate::fe::stepping::predictor::displacement_step;
-    use crate::fe::stepping::test_fixtures::loaded_sinusoid_with;
-    use crate::fe::Interface;
 
     /// Releasing the contact edges that are tensile at an unloading step's prediction changes
     /// Newton's path, not the state. Coarse AR 0.3, τ_max/E* 0.1, loaded to a/λ 0.3, then
@@ -408,8 +402,7 @@ mod edge_release_tests {
     /// asserted 1e-12 λ), the unloading step in 42 Newton iterations against 56.
     #[test]
     fn releasing_the_tensile_edge_changes_the_path_not_the_state() {
-        let interface = Interface::coulomb_orowan(1.0, 0.1, 0.005);
-        let (model, mut asm, opts, states) = loaded_sinusoid_with(0.3, 0.3, interface);
+        let (model, mut asm, opts, states) = loaded_with_friction();
         let mut base = states.last().expect("a loaded state").clone();
         let mut iterations = [0, 0];
         for target in states.iter().rev().skip(1).take(7) {
@@ -420,9 +413,7 @@ mod edge_release_tests {
             };
             let (plain, plain_iterations) = step(&mut asm, false).expect("the plain step");
             let (mut st, released_iterations) = step(&mut asm, true).expect("the unloading step");
-            let apart = (plain.x.iter().zip(&st.x))
-                .map(|(p, q)| (p[0] - q[0]).abs().max((p[1] - q[1]).abs()))
-                .fold(0.0, f64::max);
+            let apart = largest_distance(&plain, &st);
             println!(
                 "d/λ {:.5}: apart {apart:.2e} λ, {plain_iterations} against {released_iterations} iterations",
                 target.d
