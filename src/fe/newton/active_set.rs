@@ -112,7 +112,7 @@ pub(crate) fn release_tensile_edges(
         return;
     };
     let release_force = release_forces(model, st, &f.grad);
-    let threshold = -opts.contact.multiplier_rtol * release_scale(&release_force);
+    let threshold = release_threshold(opts, &release_force);
     let n = st.active.len();
     let free = |k: Option<usize>| k.is_some_and(|k| k < n && !st.active[k]);
     let edge = |k: usize| st.active[k] && (free(k.checked_sub(1)) || free(Some(k + 1)));
@@ -122,6 +122,12 @@ pub(crate) fn release_tensile_edges(
     for k in tensile {
         st.active[k] = false;
     }
+}
+
+/// The release test's threshold on `release_force` ([`release_forces`]): `−multiplier_rtol`
+/// times its scale ([`release_scale`]); a node whose value lies below it is released.
+fn release_threshold(opts: &SolveOptions, release_force: &[f64]) -> f64 {
+    -opts.contact.multiplier_rtol * release_scale(release_force)
 }
 
 /// The scale of the release test: the largest magnitude of `release_force`
@@ -162,14 +168,12 @@ fn active_set_passes(
         })?;
         let release_force = release_forces(model, st, &f.grad);
         let gaps = model.gaps(st);
-        let scale = release_scale(&release_force);
+        let threshold = release_threshold(opts, &release_force);
         let gap_tol = opts.contact.gap_tolerance_over_amplitude * model.indenter.amplitude();
         let mut changed = false;
         for k in 0..st.active.len() {
             if st.active[k] {
-                if release_force[k] < -opts.contact.multiplier_rtol * scale
-                    && hold.active != Some(k)
-                {
+                if release_force[k] < threshold && hold.active != Some(k) {
                     st.active[k] = false;
                     changed = true;
                 }
