@@ -182,9 +182,18 @@ pub struct CurveFailure {
     pub unloading: Vec<super::CurvePoint>,
 }
 
-/// Why one attempt at a load step failed.
+/// One attempt at a load step that failed: why, and the Newton iterations it spent.
 #[derive(Debug, Clone)]
-pub(crate) enum StepFail {
+pub(crate) struct StepFail {
+    cause: FailCause,
+    /// Newton iterations the attempt spent: every active-set pass and every try it made.
+    iterations: usize,
+}
+
+/// What stopped an attempt at a load step.
+#[derive(Debug, Clone)]
+pub(crate) enum FailCause {
+    /// No convergence within the pass's iterations (`iteration`: the pass's, where it stopped).
     Diverged {
         iteration: usize,
         residual: f64,
@@ -194,13 +203,28 @@ pub(crate) enum StepFail {
         iteration: usize,
         residual: f64,
     },
+    /// The active set still changed after `updates` updates.
     Cycling {
-        iterations: usize,
+        updates: usize,
     },
     Linear {
         iteration: usize,
         message: String,
     },
+}
+
+impl From<FailCause> for StepFail {
+    /// A failure within one Newton pass: the attempt spent the pass's iterations so far (a
+    /// caller that spent more before it adds them, [`StepFail::after`]).
+    fn from(cause: FailCause) -> Self {
+        let iterations = match &cause {
+            FailCause::Diverged { iteration, .. }
+            | FailCause::Inverted { iteration, .. }
+            | FailCause::Linear { iteration, .. } => *iteration,
+            FailCause::Cycling { .. } => 0,
+        };
+        StepFail { cause, iterations }
+    }
 }
 
 /// The advice of [`SolveError::PressureTargetBeyondLimit`]: one the caller can follow. At
@@ -214,20 +238,31 @@ fn pressure_limit_advice(a_over_lambda: f64) -> &'static str {
 }
 
 impl StepFail {
-    /// The Newton iterations the failed solve spent in the pass that failed (those of earlier
-    /// active-set passes are not kept: a lower bound of what the try cost).
-    pub(crate) fn iterations(&self) -> usize {
-        match self {
-            StepFail::Diverged { iteration, .. }
-            | StepFail::Inverted { iteration, .. }
-            | StepFail::Linear { iteration, .. } => *iteration,
-            StepFail::Cycling { iterations } => *iterations,
+    /// The active set did not settle in `updates` updates, after `iterations` Newton iterations.
+    pub(crate) fn cycling(updates: usize, iterations: usize) -> Self {
+        StepFail {
+            cause: FailCause::Cycling { updates },
+            iterations,
         }
     }
 
+    /// The same failure, after `earlier` Newton iterations spent before it on the same attempt
+    /// (earlier active-set passes, an earlier try).
+    pub(crate) fn after(self, earlier: usize) -> Self {
+        StepFail {
+            iterations: self.iterations + earlier,
+            ..self
+        }
+    }
+
+    /// The Newton iterations the failed attempt spent, all of them.
+    pub(crate) fn iterations(&self) -> usize {
+        self.iterations
+    }
+
     pub(crate) fn into_error(self, step: usize, d: f64) -> SolveError {
-        match self {
-            StepFail::Diverged {
+        match self.cause {
+            FailCause::Diverged {
                 iteration,
                 residual,
                 reason,
@@ -238,7 +273,7 @@ impl StepFail {
                 slab_displacement_over_lambda: d,
                 reason,
             },
-            StepFail::Inverted {
+            FailCause::Inverted {
                 iteration,
                 residual,
             } => SolveError::Inverted {
@@ -246,8 +281,11 @@ impl StepFail {
                 iteration,
                 residual,
             },
-            StepFail::Cycling { iterations } => SolveError::ActiveSetCycling { step, iterations },
-            StepFail::Linear { iteration, message } => SolveError::LinearSolve {
+            FailCause::Cycling { updates } => SolveError::ActiveSetCycling {
+                step,
+                iterations: updates,
+            },
+            FailCause::Linear { iteration, message } => SolveError::LinearSolve {
                 step,
                 iteration,
                 message,

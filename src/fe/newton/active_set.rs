@@ -8,7 +8,7 @@
 //! slab displacement fixed; [`equilibrate_event`] solves for it too, bringing the event's
 //! target node onto the indenter.
 
-use crate::fe::error::StepFail;
+use crate::fe::error::{FailCause, StepFail};
 use crate::fe::model::{Model, State};
 use crate::fe::newton::assembly::Assembly;
 use crate::fe::newton::{newton, newton_bordered, Pass};
@@ -101,7 +101,7 @@ pub(crate) fn release_forces(model: &Model, st: &State, grad: &[f64]) -> Vec<f64
 /// Releases the contact patches' edge nodes of `st` (active, with a free neighbour on the face)
 /// whose release force ([`release_forces`]) fails the active-set passes' release test
 /// (`multiplier_rtol`); nothing where `st` is inverted. For an unloading step's predicted state
-/// ([`crate::fe::stepping::predictor::unloading_step`]).
+/// ([`crate::fe::stepping::displacement_step::unloading_step`]).
 pub(crate) fn release_tensile_edges(
     model: &Model,
     asm: &mut Assembly,
@@ -161,11 +161,14 @@ fn active_set_passes(
         } else {
             opts.newton.residual_rtol
         };
-        total += newton_pass(model, asm, st, Pass { rtol, after_change })?;
-        let f = asm.assemble(model, st, false).ok_or(StepFail::Inverted {
-            iteration: total,
-            residual: f64::NAN,
-        })?;
+        total += newton_pass(model, asm, st, Pass { rtol, after_change })
+            .map_err(|failed| failed.after(total))?;
+        let f = asm
+            .assemble(model, st, false)
+            .ok_or(StepFail::from(FailCause::Inverted {
+                iteration: total,
+                residual: f64::NAN,
+            }))?;
         let release_force = release_forces(model, st, &f.grad);
         let gaps = model.gaps(st);
         let threshold = release_threshold(opts, &release_force);
@@ -191,7 +194,5 @@ fn active_set_passes(
         }
         model.enforce_constraints(st);
     }
-    Err(StepFail::Cycling {
-        iterations: opts.newton.max_active_set_updates,
-    })
+    Err(StepFail::cycling(opts.newton.max_active_set_updates, total))
 }

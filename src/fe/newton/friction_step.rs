@@ -44,7 +44,7 @@
 //! ([`crate::fe::contact::friction::FrictionRow::regime_after`]); the switch in the predictor's load tangent.
 
 use crate::fe::contact::friction::{Branch, Regime};
-use crate::fe::error::StepFail;
+use crate::fe::error::{FailCause, StepFail};
 use crate::fe::linsys::{LinSolveError, RowChange};
 use crate::fe::model::Model;
 use crate::fe::newton::assembly::Assembly;
@@ -72,9 +72,11 @@ pub(crate) fn solve_newton_step(
     iteration: usize,
     direction: impl Fn(&[Vec<f64>]) -> (Vec<f64>, f64),
 ) -> Result<Option<Vec<(usize, Branch)>>, StepFail> {
-    let failed = |e: LinSolveError| StepFail::Linear {
-        iteration,
-        message: e.to_string(),
+    let failed = |e: LinSolveError| {
+        StepFail::from(FailCause::Linear {
+            iteration,
+            message: e.to_string(),
+        })
     };
     let law = match model.friction {
         Some(law) if opts.newton.semismooth_friction || law.exact_stick() => law,

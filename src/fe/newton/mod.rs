@@ -25,7 +25,7 @@ pub mod line_search;
 pub mod mixed_residual;
 
 use crate::fe::contact::friction::Branch;
-use crate::fe::error::StepFail;
+use crate::fe::error::{FailCause, StepFail};
 use crate::fe::model::{Model, State};
 use crate::fe::newton::assembly::{Assembly, Forces};
 use crate::fe::newton::friction_step::solve_newton_step;
@@ -104,11 +104,11 @@ fn stepped(
 fn interrupted(iteration: usize, residual: f64) -> Result<(), StepFail> {
     match crate::fe::interrupt::requested() {
         false => Ok(()),
-        true => Err(StepFail::Diverged {
+        true => Err(StepFail::from(FailCause::Diverged {
             iteration,
             residual,
             reason: crate::fe::interrupt::INTERRUPTED.into(),
-        }),
+        })),
     }
 }
 
@@ -149,10 +149,10 @@ pub(crate) fn newton(
         // convergence check on the forces alone (cached after the line search), the
         // matrix only when another iteration follows
         let Some(f) = asm.assemble(model, st, false) else {
-            return Err(StepFail::Inverted {
+            return Err(StepFail::from(FailCause::Inverted {
                 iteration: it,
                 residual: last_res,
-            });
+            }));
         };
         let res = convergence_norm(&f);
         let prev = std::mem::replace(&mut last_res, res);
@@ -248,11 +248,11 @@ fn diverged(
     if let Some(note) = at_crossover(asm) {
         reason = format!("{reason}; {note}");
     }
-    StepFail::Diverged {
+    StepFail::from(FailCause::Diverged {
         iteration,
         residual,
         reason,
-    }
+    })
 }
 
 /// How close the two bounds of the threshold, `μN` and `τ_max ℓ`, must be (relative to the
@@ -350,10 +350,10 @@ pub(crate) fn newton_bordered(
         // convergence check on the forces alone (cached after the line search), the
         // matrix only when another iteration follows
         let Some(f) = asm.assemble(model, st, false) else {
-            return Err(StepFail::Inverted {
+            return Err(StepFail::from(FailCause::Inverted {
                 iteration: it,
                 residual: last_res,
-            });
+            }));
         };
         let (c, _) = model.edge_constraint(st, k);
         let res = convergence_norm(&f);
@@ -447,11 +447,11 @@ fn bordered_step(
     let held = solve_newton_step(model, asm, opts, &mut rhs, it, |z| combine(&z[0], &z[1]))?;
     let (z1, z2) = (&rhs[0], &rhs[1]);
     if rate(z2).abs() < INSENSITIVE_GAP_RATE {
-        return Err(StepFail::Diverged {
+        return Err(StepFail::from(FailCause::Diverged {
             iteration: it,
             residual: res,
             reason: "edge constraint insensitive to the slab displacement".into(),
-        });
+        }));
     }
     let (dq, dd) = combine(z1, z2);
     Ok(BorderedStep { dq, dd, held })

@@ -13,7 +13,7 @@
 //! ([`EventSearch::predicted_through_closings`]).
 
 use crate::fe::error::SolveError;
-use crate::fe::error::StepFail;
+use crate::fe::error::{FailCause, StepFail};
 use crate::fe::model::{Model, State};
 use crate::fe::newton::active_set::{equilibrate, equilibrate_event, Hold};
 use crate::fe::newton::assembly::Assembly;
@@ -272,10 +272,10 @@ impl EventSearch<'_> {
                 equilibrate(model, asm, &mut st, self.opts, Hold::free(Some(self.node)))
                     .map(|it| (st, it))
             }
-            None => Err(StepFail::Inverted {
+            None => Err(StepFail::from(FailCause::Inverted {
                 iteration: 0,
                 residual: f64::NAN,
-            }),
+            })),
         }
     }
 

@@ -16,6 +16,7 @@ use crate::fe::error::{CurveFailure, SolveError};
 use crate::fe::model::{Model, State};
 use crate::fe::newton::active_set::{equilibrate, Hold};
 use crate::fe::newton::assembly::Assembly;
+use crate::fe::stepping::displacement_step::displacement_step;
 use crate::fe::stepping::event_search::{
     activate_touching, event_gap_tolerance, next_target, predicted_closing, EventSearch,
 };
@@ -23,9 +24,7 @@ use crate::fe::stepping::load_path::{LoadPath, OnStep};
 use crate::fe::stepping::node_events::{
     activate_touching_anywhere, earliest_touchdown, passed_touchdowns,
 };
-use crate::fe::stepping::predictor::{
-    displacement_step, tangent_at, third_order_term, LoadTangent,
-};
+use crate::fe::stepping::predictor::{tangent_at, third_order_term, LoadTangent};
 use crate::fe::stepping::pressure_target::{land_on_pressure, Overshoot, PRESSURE_TARGET_RTOL};
 use crate::fe::stepping::release_events::{first_release, ReleaseSearch};
 use crate::fe::{Curve, SolveOptions};

@@ -7,10 +7,11 @@
 //! [`node_events`] the same for a contact in several patches (profiles), and
 //! [`release_events`] where a contact node lets go; [`step_control`] holds the one regula falsi
 //! and the step cutter; [`predictor`] the load tangent and the predicted state of a step, [`touched_hold`] the nodes that have
-//! just touched held in it;
+//! just touched held in it; [`displacement_step`] the step that predicts and equilibrates;
 //! [`step_state`] the deformed state of every converged point, built only for a caller that
 //! asks; `test_fixtures` the fixtures of their unit tests.
 
+pub mod displacement_step;
 pub mod event_search;
 pub mod load_path;
 pub mod loading;

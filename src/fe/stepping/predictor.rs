@@ -1,6 +1,6 @@
 //! The start of a load step: the load path's first and second derivatives `∂q/∂d`, `∂²q/∂d²`
-//! at a converged state, the predicted state at a new slab displacement (Taylor along the path),
-//! and the displacement-controlled step that predicts and equilibrates.
+//! at a converged state, and the predicted state at a new slab displacement (Taylor along the path;
+//! the step that predicts and equilibrates is [`crate::fe::stepping::displacement_step`]).
 //!
 //! The second derivative costs two residual assemblies and a solve with the factorisation the
 //! first left: along the path `r(q(d), d) = 0`, so `K q'' = −∂²r[(q', 1), (q', 1)]`, and the
@@ -17,9 +17,7 @@
 //! the long steps toward the valley (docs/performance.md, "the third-order term").
 
 use crate::fe::contact::friction::Branch;
-use crate::fe::error::StepFail;
 use crate::fe::model::{Model, State};
-use crate::fe::newton::active_set::{equilibrate, release_tensile_edges, Hold};
 use crate::fe::newton::assembly::Assembly;
 use crate::fe::stepping::touched_hold::{TouchedHold, TouchedNodes};
 use crate::fe::{Kinematics, SolveOptions};
@@ -60,6 +58,16 @@ impl LoadTangent {
     pub(crate) fn with_third_order(self, third_order: Option<Vec<[f64; 2]>>) -> Self {
         Self {
             third_order,
+            ..self
+        }
+    }
+
+    /// The tangent alone, without the path's curvature and third-order term: its predictor is
+    /// the Euler one.
+    pub(crate) fn first_order(self) -> Self {
+        Self {
+            curvature: None,
+            third_order: None,
             ..self
         }
     }
@@ -208,14 +216,10 @@ pub(crate) fn tangent_at(
         .flatten()
 }
 
-/// Predictor for the slab displacement `cur.d + dd`: the third-order Taylor predictor
-/// `q + dd ∂q/∂d + ½ dd² ∂²q/∂d² + dd³ q'''/6` along the load path `tangent` of the converged
-/// state (where it carries the third-order term), then the second-order one without the last
-/// term, then the tangent (Euler) predictor, else linear extrapolation of the last increment, else
-/// a uniform vertical compression. The first that has no inverted element is used. The Taylor
-/// predictors also predict the element pressures, from the path's own derivatives, to the order
-/// of their positions' curvature ([`Model::predicted_pressure`]): Newton's first tangent starts
-/// from them.
+/// Predictor for the slab displacement `cur.d + dd`: the Taylor prediction along the load path
+/// `tangent` of the converged state ([`taylor_prediction`]), else linear extrapolation of the last
+/// increment, else a uniform vertical compression ([`crude_prediction`]). The first that has no
+/// inverted element is used.
 pub(crate) fn predictor(
     model: &Model,
     cur: &State,
@@ -223,47 +227,82 @@ pub(crate) fn predictor(
     dd: f64,
     tangent: Option<&LoadTangent>,
 ) -> Option<State> {
+    let taylor = tangent.and_then(|z| taylor_prediction(model, cur, dd, z));
+    taylor
+        .map(|(st, _)| st)
+        .or_else(|| crude_prediction(model, cur, prev, dd))
+}
+
+/// Which terms a Taylor prediction kept ([`taylor_prediction`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum TaylorOrder {
+    /// The tangent alone (Euler).
+    First,
+    /// The tangent and the path's curvature, with the third-order term where the tangent
+    /// carries it.
+    Curved,
+}
+
+/// The Taylor prediction at the slab displacement `cur.d + dd` along the load path `z` of the
+/// converged state: `q + dd ∂q/∂d + ½ dd² ∂²q/∂d² + dd³ q'''/6` where the tangent carries the
+/// third-order term, then the second-order one without it, then the tangent (Euler) one; the
+/// first that has no inverted element, constraints enforced, with the terms it kept; `None` when
+/// every one inverts an element. The predictions also predict the element pressures, from the
+/// path's own derivatives, to the order of their positions' curvature
+/// ([`Model::predicted_pressure`]): Newton's first tangent starts from them.
+pub(crate) fn taylor_prediction(
+    model: &Model,
+    cur: &State,
+    dd: f64,
+    z: &LoadTangent,
+) -> Option<(State, TaylorOrder)> {
+    let (euler, second) = taylor(model, cur, dd, z);
+    let (first_order, second_order) = match model.predicted_pressure(cur, z, z.curvature(), dd) {
+        Some(p) => (Some(p.first_order), p.second_order),
+        None => (None, None),
+    };
+    let mut tries = Vec::new();
+    if let (Some(second), Some(term)) = (&second, &z.third_order) {
+        let third = moved_by(second, term, dd * dd * dd).with_pressure(second_order.clone());
+        tries.push((third, TaylorOrder::Curved));
+    }
+    tries.extend(second.map(|second| (second.with_pressure(second_order), TaylorOrder::Curved)));
+    tries.push((euler.with_pressure(first_order), TaylorOrder::First));
+    (tries.into_iter()).find_map(|(st, order)| admissible(model, st).map(|st| (st, order)))
+}
+
+/// The predictions that need no load tangent, at the slab displacement `cur.d + dd`: linear
+/// extrapolation of the increment from `prev`, else a uniform vertical compression of the layer;
+/// the first that has no inverted element, constraints enforced.
+pub(crate) fn crude_prediction(
+    model: &Model,
+    cur: &State,
+    prev: Option<&State>,
+    dd: f64,
+) -> Option<State> {
+    let extrapolated = prev.filter(|p| cur.d - p.d > 0.0).map(|p| {
+        let s = dd / (cur.d - p.d);
+        let mut st = cur.clone();
+        for (xn, (xc, xp)) in st.x.iter_mut().zip(cur.x.iter().zip(&p.x)) {
+            xn[0] = xc[0] + s * (xc[0] - xp[0]);
+            xn[1] = xc[1] + s * (xc[1] - xp[1]);
+        }
+        st.d = cur.d + dd;
+        st
+    });
     let h = model.mesh.thickness;
-    let mut tries: Vec<State> = Vec::new();
-    if let Some(z) = tangent {
-        let (euler, second) = taylor(model, cur, dd, z);
-        let (first_order, second_order) = match model.predicted_pressure(cur, z, z.curvature(), dd)
-        {
-            Some(p) => (Some(p.first_order), p.second_order),
-            None => (None, None),
-        };
-        if let (Some(second), Some(term)) = (&second, &z.third_order) {
-            tries.push(moved_by(second, term, dd * dd * dd).with_pressure(second_order.clone()));
-        }
-        tries.extend(second.map(|second| second.with_pressure(second_order)));
-        tries.push(euler.with_pressure(first_order));
-    }
-    if let Some(p) = prev {
-        let ddp = cur.d - p.d;
-        if ddp > 0.0 {
-            let s = dd / ddp;
-            let mut st = cur.clone();
-            for (xn, (xc, xp)) in st.x.iter_mut().zip(cur.x.iter().zip(&p.x)) {
-                xn[0] = xc[0] + s * (xc[0] - xp[0]);
-                xn[1] = xc[1] + s * (xc[1] - xp[1]);
-            }
-            st.d = cur.d + dd;
-            tries.push(st);
-        }
-    }
-    let mut st = cur.clone();
-    for (xn, xr) in st.x.iter_mut().zip(&model.mesh.nodes) {
+    let mut compressed = cur.clone();
+    for (xn, xr) in compressed.x.iter_mut().zip(&model.mesh.nodes) {
         xn[1] -= dd * xr[1] / h;
     }
-    st.d = cur.d + dd;
-    tries.push(st);
-    for mut t in tries {
-        model.enforce_constraints(&mut t);
-        if model.energy(&t).is_some() {
-            return Some(t);
-        }
-    }
-    None
+    compressed.d = cur.d + dd;
+    (extrapolated.into_iter().chain([compressed])).find_map(|st| admissible(model, st))
+}
+
+/// `st` with its constraints enforced, if it has no inverted element.
+fn admissible(model: &Model, mut st: State) -> Option<State> {
+    model.enforce_constraints(&mut st);
+    model.energy(&st).is_some().then_some(st)
 }
 
 /// The Euler and (where `tangent` has the curvature) second-order Taylor states at the slab
@@ -310,127 +349,6 @@ pub(crate) fn third_order_term(
         .map(|(r, p)| [(r[0] - p[0]) / cube, (r[1] - p[1]) / cube])
         .collect();
     Some(term)
-}
-
-/// A displacement-controlled step from the converged state `from` to the slab displacement
-/// `d` (exactly: `from.d + (d − from.d)` may differ from `d` in the last bit): predicted along
-/// the load tangent of `from`, then equilibrated with its active set, the nodes of `hold` kept
-/// as they are. With friction, a step that fails from the second-order prediction is tried
-/// again from the first-order one: at μ 100 the second-order predictor stopped two unloading
-/// branches at mesh 96 (a line search that found no step, the residual at 7·10⁻⁷) that the
-/// first-order one completes (docs/performance.md, "friction's predictor"). Returns the state
-/// (slip not committed) and the Newton iterations, a failed first try's included; a failure is
-/// the last try's.
-pub(crate) fn displacement_step(
-    model: &Model,
-    asm: &mut Assembly,
-    opts: &SolveOptions,
-    from: &State,
-    d: f64,
-    hold: Hold,
-) -> Result<(State, usize), StepFail> {
-    let contact = PredictedContact::Kept;
-    Step {
-        from,
-        d,
-        hold,
-        contact,
-    }
-    .taken(model, asm, opts)
-}
-
-/// An unloading step from the converged state `from` to the slab displacement `d`: a
-/// [`displacement_step`] whose predicted state first lets go of the contact patches' edge nodes
-/// that are tensile there ([`release_tensile_edges`]), as the contact recedes from its edges,
-/// instead of holding them through a first active-set pass. A node so released that the step
-/// puts back keeps its history ([`Model::activate`]), so the release changes Newton's path
-/// (−11 to −29 % of the unloading's iterations on the mesh-48 loops), not the state it converges
-/// to, wherever the step has one state; where it has two (at μ 100 an edge node in contact with
-/// a small force, or free and clear of the indenter) it may find the other (docs/performance.md,
-/// "the tensile edge released at the prediction").
-pub(crate) fn unloading_step(
-    model: &Model,
-    asm: &mut Assembly,
-    opts: &SolveOptions,
-    from: &State,
-    d: f64,
-) -> Result<(State, usize), StepFail> {
-    let contact = PredictedContact::EdgesReleased;
-    Step {
-        from,
-        d,
-        hold: Hold::NONE,
-        contact,
-    }
-    .taken(model, asm, opts)
-}
-
-/// What a displacement step does to the contact set of its predicted state before Newton.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum PredictedContact {
-    /// Nothing: the active-set passes release what turns tensile.
-    Kept,
-    /// The contact patches' edge nodes that are tensile there are released ([`unloading_step`]).
-    EdgesReleased,
-}
-
-/// A displacement-controlled step: from the converged state `from` to the slab displacement `d`,
-/// the nodes of `hold` kept as they are, the predicted state's contact set as `contact` says
-/// ([`displacement_step`], [`unloading_step`]).
-struct Step<'a> {
-    from: &'a State,
-    d: f64,
-    hold: Hold,
-    contact: PredictedContact,
-}
-
-impl Step<'_> {
-    /// The step from the second-order prediction, else from the first-order one
-    /// ([`displacement_step`]).
-    fn taken(
-        &self,
-        model: &Model,
-        asm: &mut Assembly,
-        opts: &SolveOptions,
-    ) -> Result<(State, usize), StepFail> {
-        let tangent = tangent_at(model, asm, opts, self.from);
-        let predicted = self.equilibrated(model, asm, opts, tangent.as_ref());
-        match (predicted, tangent) {
-            (Err(failed), Some(z)) if !model.is_potential() && z.curvature.is_some() => {
-                let first_order = LoadTangent {
-                    curvature: None,
-                    third_order: None,
-                    ..z
-                };
-                let (st, iterations) = self.equilibrated(model, asm, opts, Some(&first_order))?;
-                Ok((st, iterations + failed.iterations()))
-            }
-            (result, _) => result,
-        }
-    }
-
-    /// The step predicted along `tangent` ([`predictor`]) and equilibrated, with its Newton
-    /// iterations.
-    fn equilibrated(
-        &self,
-        model: &Model,
-        asm: &mut Assembly,
-        opts: &SolveOptions,
-        tangent: Option<&LoadTangent>,
-    ) -> Result<(State, usize), StepFail> {
-        let predicted = predictor(model, self.from, None, self.d - self.from.d, tangent);
-        let mut st = predicted.ok_or(StepFail::Inverted {
-            iteration: 0,
-            residual: f64::NAN,
-        })?;
-        st.d = self.d;
-        model.enforce_constraints(&mut st);
-        if self.contact == PredictedContact::EdgesReleased {
-            release_tensile_edges(model, asm, opts, &mut st);
-        }
-        let iters = equilibrate(model, asm, &mut st, opts, self.hold)?;
-        Ok((st, iters))
-    }
 }
 
 #[cfg(test)]

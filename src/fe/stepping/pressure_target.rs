@@ -2,11 +2,11 @@
 //! converged state and the edge event that overshoots it.
 
 use crate::fe::contact::measure::{mean_pressure_over_estar, measure_between_events, Measured};
-use crate::fe::error::StepFail;
+use crate::fe::error::{FailCause, StepFail};
 use crate::fe::model::{Model, State};
 use crate::fe::newton::active_set::Hold;
 use crate::fe::newton::assembly::Assembly;
-use crate::fe::stepping::predictor::displacement_step;
+use crate::fe::stepping::displacement_step::displacement_step;
 use crate::fe::stepping::step_control::{RegulaFalsi, StepCuts, Trial};
 use crate::fe::SolveOptions;
 
@@ -76,7 +76,7 @@ pub(crate) fn land_on_pressure(
         let (st, it) = match displacement_step(model, asm, opts, start, d, Hold::free(Some(node))) {
             Ok(converged) => converged,
             Err(f) => {
-                next = cuts.cut(start.d, d).ok_or(f)?;
+                next = cuts.after_failure((start.d, d), f, &mut iters)?;
                 continue;
             }
         };
@@ -98,11 +98,11 @@ pub(crate) fn land_on_pressure(
         });
         next = search.next(0.0, 1.0).expect("bracketed by the event");
     }
-    Err(StepFail::Diverged {
+    Err(StepFail::from(FailCause::Diverged {
         iteration: iters,
         residual: f64::NAN,
         reason: format!(
             "the slab displacement with p̄/E* = {target} was not found in {MAX_PRESSURE_TRIALS} trials"
         ),
-    })
+    }))
 }

@@ -11,13 +11,13 @@
 //! release threshold ([`locate_release`]). At the event the node, touching with zero force,
 //! is released; the next step starts with it free.
 
-use crate::fe::error::StepFail;
+use crate::fe::error::{FailCause, StepFail};
 use crate::fe::model::{Model, State};
 use crate::fe::newton::active_set::{equilibrate, release_forces, release_scale, Hold};
 use crate::fe::newton::assembly::Assembly;
+use crate::fe::stepping::displacement_step::displacement_step;
 use crate::fe::stepping::event_search::open_gap_tolerance;
 use crate::fe::stepping::node_events::passed_touchdowns;
-use crate::fe::stepping::predictor::displacement_step;
 use crate::fe::stepping::step_control::{RegulaFalsi, StepCuts, Trial};
 use crate::fe::SolveOptions;
 
@@ -115,8 +115,7 @@ pub(crate) fn locate_release(
         let (mut st, it) = match displacement_step(model, asm, opts, start, d, held) {
             Ok(converged) => converged,
             Err(f) => {
-                iterations += f.iterations();
-                next = cuts.cut(start.d, d).ok_or(f)?;
+                next = cuts.after_failure((start.d, d), f, &mut iterations)?;
                 continue;
             }
         };
@@ -125,7 +124,8 @@ pub(crate) fn locate_release(
         if f.abs() <= tol {
             // touching with zero force: releasing it leaves the equilibrium as it is
             st.active[node] = false;
-            iterations += equilibrate(model, asm, &mut st, opts, hold)?;
+            iterations += equilibrate(model, asm, &mut st, opts, hold)
+                .map_err(|failed| failed.after(iterations))?;
             return Ok(ReleaseSearch {
                 release: Some(Release { state: st, node }),
                 iterations,
@@ -134,13 +134,13 @@ pub(crate) fn locate_release(
         search.insert(Trial { x: d, f, at: st });
         next = search.next(0.0, 1.0).expect("bracketed");
     }
-    Err(StepFail::Diverged {
+    Err(StepFail::from(FailCause::Diverged {
         iteration: iterations,
         residual: f64::NAN,
         reason: format!(
             "the release of contact node {node} was not located in {MAX_RELEASE_TRIALS} trials"
         ),
-    })
+    }))
 }
 
 /// The release that comes before the touchdown `found` of free node `target` from the
@@ -161,7 +161,8 @@ pub(crate) fn first_release(
     let mut iterations = 0;
     let hold = Hold::free(Some(target));
     for j in released_nodes(from, found) {
-        let search = locate_release(model, asm, opts, from, j, found.d, hold)?;
+        let search = locate_release(model, asm, opts, from, j, found.d, hold)
+            .map_err(|failed| failed.after(iterations))?;
         iterations += search.iterations;
         if let Some(r) = search.release {
             if first.as_ref().is_none_or(|f| r.state.d < f.state.d) {

@@ -7,6 +7,8 @@
 //! event search, the pressure landing and the unloading steps retry a failed step from its
 //! start with the increment cut ([`StepCuts`]).
 
+use crate::fe::error::StepFail;
+
 /// A failed increment is cut by this factor before it is retried
 /// ([`crate::fe::StepOptions::max_step_cuts`] counts the cuts): halving.
 pub(crate) const STEP_CUT_FACTOR: f64 = 0.5;
@@ -52,6 +54,24 @@ impl StepCuts {
         }
         self.made += 1;
         Some(from + increment)
+    }
+
+    /// After the trial from `from` to `to` failed: the displacement to try next ([`Self::cut`]),
+    /// the failure's Newton iterations added to `spent`; with no cut left, the failure, counting
+    /// `spent` too.
+    pub(crate) fn after_failure(
+        &mut self,
+        (from, to): (f64, f64),
+        failed: StepFail,
+        spent: &mut usize,
+    ) -> Result<f64, StepFail> {
+        match self.cut(from, to) {
+            Some(next) => {
+                *spent += failed.iterations();
+                Ok(next)
+            }
+            None => Err(failed.after(*spent)),
+        }
     }
 
     /// A step converged: the next failure starts counting again.

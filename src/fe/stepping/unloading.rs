@@ -6,9 +6,9 @@ use crate::fe::error::{CurveFailure, SolveError, StepFail};
 use crate::fe::model::{Model, State};
 use crate::fe::newton::active_set::{release_forces, release_scale};
 use crate::fe::newton::assembly::Assembly;
+use crate::fe::stepping::displacement_step::unloading_step;
 use crate::fe::stepping::load_path::LoadPath;
 use crate::fe::stepping::loading::loading_branch;
-use crate::fe::stepping::predictor::unloading_step;
 use crate::fe::stepping::step_control::{StepCuts, STEP_CUT_FACTOR};
 use crate::fe::stepping::step_state::Converged;
 use crate::fe::{Curve, CurvePoint, LoadDirection, SolveOptions};
@@ -49,8 +49,8 @@ pub(crate) fn trace_cycle(
 /// and points are recorded, at the scheduled displacements alone, so that the discrete load
 /// path, and with it the dissipated energy, does not depend on where Newton needed help
 /// (where the cuts fall moves with the round-off of the linear solves); a point's Newton
-/// iterations count those of the intermediate steps and failed tries that led to it (of a failed
-/// try, its last active-set pass: [`crate::fe::error::StepFail::iterations`]). When contact remains
+/// iterations count those of the intermediate steps and failed tries that led to it (all of a
+/// failed try's: [`crate::fe::error::StepFail::iterations`]). When contact remains
 /// at `d = 0` with a positive mean pressure (slip locked in by friction; "positive" meaning
 /// above `residual_rtol` times the largest mean pressure of the cycle, the round-off of the
 /// summed contact forces), the slab goes on retracting by the first event's increment until the last node
@@ -340,7 +340,8 @@ fn unloading_cuts(opts: &SolveOptions, smallest_increment: f64) -> StepCuts {
 mod tests {
     use super::*;
     use crate::fe::newton::active_set::{equilibrate, Hold};
-    use crate::fe::stepping::predictor::{displacement_step, predictor, tangent_at};
+    use crate::fe::stepping::displacement_step::displacement_step;
+    use crate::fe::stepping::predictor::{predictor, tangent_at};
     use crate::fe::stepping::test_fixtures::{largest_distance, loaded_sinusoid_with};
     use crate::fe::Interface;
 

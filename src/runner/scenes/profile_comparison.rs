@@ -162,11 +162,11 @@ impl ComparisonSettings<'_> {
         )
     }
 
-    /// `model_points` mean pressures evenly up to `p_max` (p̄/E*), `p_max` the last.
+    /// `model_points` mean pressures evenly up to `p_max` (p̄/E*), `p_max` the last, exactly
+    /// (`p_max · k / n` can round above `p_max`, beyond the FE curve the loads are read on).
     pub fn model_loads(&self, p_max: f64) -> Vec<f64> {
-        (1..=self.model_points)
-            .map(|k| p_max * k as f64 / self.model_points as f64)
-            .collect()
+        let n = self.model_points;
+        (1..=n).map(|k| p_max * (k as f64 / n as f64)).collect()
     }
 }
 
@@ -181,4 +181,36 @@ pub(crate) fn fe_series(t: usize, tau_max_mpa: f64, points: &[CurvePoint]) -> Se
             .map(|p| (p.p_over_estar, p.contact_fraction))
             .collect(),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The last model load is the FE curve's last mean pressure to the bit, so the last point
+    /// is always compared: `p · 30 / 30` rounds above `p` for 37 of these 1000 values.
+    #[test]
+    fn the_last_model_load_is_the_curves_last_point() {
+        let settings = ComparisonSettings {
+            table: "many_scale",
+            mesh: 48,
+            mesh_by_finest_order: &[],
+            elements_per_finest_wavelength: 0,
+            error_estimate_mesh: 32,
+            depth_ratio: 1.0,
+            peak_ratio: 1.0,
+            coarsen_at_aspect: 0.0,
+            until_contact_fraction: 0.5,
+            model_points: 30,
+            fe_error_order: 1.0,
+            error_from_contact_fraction: 0.0,
+        };
+        for k in 1..=1000 {
+            let p_max = 0.01 + 1e-5 * k as f64;
+            let loads = settings.model_loads(p_max);
+            assert_eq!(loads.len(), 30);
+            assert_eq!(loads.last(), Some(&p_max), "p_max {p_max:e}");
+            assert!(loads.windows(2).all(|w| w[0] < w[1]));
+        }
+    }
 }
