@@ -75,6 +75,7 @@ pub use model::material::{estar_over_g, poisson_ratio};
 pub use model::mesh::{Grading, MeshLevel, MeshLevelParseError};
 pub use options::{ContactOptions, NewtonOptions, SolveOptions, StepOptions};
 pub use stepping::loading::Stepping;
+pub use stepping::slip_front::SlipFront;
 pub use stepping::step_state::StepState;
 pub use stepping::touched_hold::TouchedNodes;
 

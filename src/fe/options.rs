@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use crate::fe::contact::edge_rule::EdgeRule;
 use crate::fe::model::mesh::{Grading, MeshLevel};
 use crate::fe::stepping::loading::Stepping;
+use crate::fe::stepping::slip_front::SlipFront;
 use crate::fe::stepping::touched_hold::TouchedNodes;
 
 /// The options of a solve: the curve's stop targets, its mesh, and the numerical settings by
@@ -123,6 +124,14 @@ pub struct StepOptions {
     /// docs/performance.md, "the node that has just touched").
     #[serde(default)]
     pub touched_nodes: TouchedNodes,
+    /// Under the penalty friction law, how an unloading step's prediction treats the stuck nodes
+    /// that start to slide in it: followed through their switches to slip (the default), or
+    /// held stuck as the load tangent has them ([`crate::fe::stepping::slip_front`]). It changes
+    /// the Newton path, not the converged state (test
+    /// `following_the_slip_front_changes_the_path_not_the_curve`; docs/performance.md, "the
+    /// slip front followed").
+    #[serde(default)]
+    pub slip_front: SlipFront,
     /// Unloading steps per loading step (≥ 1): the unloading branch retraces the loading
     /// events' slab displacements, each interval in this many equal steps. The friction
     /// history of a loop is integrated at first order in the step, so the dissipation converges
@@ -164,6 +173,7 @@ impl Default for StepOptions {
             max_edge_iterations: 60,
             tangent_predictor: true,
             touched_nodes: TouchedNodes::Held,
+            slip_front: SlipFront::Followed,
             unloading_substeps: one_substep(),
         }
     }

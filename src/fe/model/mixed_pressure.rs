@@ -271,7 +271,7 @@ mod tests {
                 .position(|s| edge_x(&model, s) >= target)
                 .expect("an event beyond the target");
             let (from, next) = (&states[i], &states[i + 1]);
-            let tangent = load_tangent(&model, &mut asm, from, TouchedNodes::Held)
+            let tangent = load_tangent(&model, &mut asm, from, TouchedNodes::Held, None)
                 .expect("a converged state");
             let dd = next.d - from.d;
             let predicted =

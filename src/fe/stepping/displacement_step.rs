@@ -10,7 +10,7 @@ use crate::fe::model::{Model, State};
 use crate::fe::newton::active_set::{equilibrate, release_tensile_edges, Hold};
 use crate::fe::newton::assembly::Assembly;
 use crate::fe::stepping::predictor::{
-    crude_prediction, tangent_at, taylor_prediction, LoadTangent, TaylorOrder,
+    crude_prediction, tangent_at, taylor_prediction, unloading_tangent_at, LoadTangent, TaylorOrder,
 };
 use crate::fe::SolveOptions;
 
@@ -111,7 +111,12 @@ impl Step<'_> {
         asm: &mut Assembly,
         opts: &SolveOptions,
     ) -> Result<(State, usize), StepFail> {
-        let tangent = tangent_at(model, asm, opts, self.from);
+        let tangent = match self.contact {
+            PredictedContact::Kept => tangent_at(model, asm, opts, self.from),
+            PredictedContact::EdgesReleased => {
+                unloading_tangent_at(model, asm, opts, self.from, self.d - self.from.d)
+            }
+        };
         let (st, order) = self.predicted(model, tangent.as_ref())?;
         let first = self.equilibrated(model, asm, opts, st);
         match (first, tangent) {

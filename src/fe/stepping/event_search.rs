@@ -349,7 +349,7 @@ impl EventSearch<'_> {
             let mut closed = predictor(model, &cur, None, dd, Some(&tangent))?;
             model.activate(&mut closed, j);
             model.enforce_constraints(&mut closed);
-            tangent = load_tangent(model, asm, &closed, self.opts.steps.touched_nodes)?;
+            tangent = load_tangent(model, asm, &closed, self.opts.steps.touched_nodes, None)?;
             cur = closed;
         }
     }

@@ -7,7 +7,8 @@
 //! [`node_events`] the same for a contact in several patches (profiles), and
 //! [`release_events`] where a contact node lets go; [`step_control`] holds the one regula falsi
 //! and the step cutter; [`predictor`] the load tangent and the predicted state of a step, [`touched_hold`] the nodes that have
-//! just touched held in it; [`displacement_step`] the step that predicts and equilibrates;
+//! just touched held in it; [`displacement_step`] the step that predicts and equilibrates, [`slip_front`] an unloading
+//! step's prediction through its slip front;
 //! [`step_state`] the deformed state of every converged point, built only for a caller that
 //! asks; `test_fixtures` the fixtures of their unit tests.
 
@@ -19,6 +20,7 @@ pub mod node_events;
 pub mod predictor;
 pub mod pressure_target;
 pub mod release_events;
+pub mod slip_front;
 pub mod step_control;
 pub mod step_state;
 #[cfg(test)]

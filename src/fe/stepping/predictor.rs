@@ -19,6 +19,7 @@
 use crate::fe::contact::friction::Branch;
 use crate::fe::model::{Model, State};
 use crate::fe::newton::assembly::Assembly;
+use crate::fe::stepping::slip_front::{piecewise_rate, SlipFront};
 use crate::fe::stepping::touched_hold::{TouchedHold, TouchedNodes};
 use crate::fe::{Kinematics, SolveOptions};
 
@@ -88,19 +89,32 @@ impl std::ops::Deref for LoadTangent {
 /// (the Euler predictor is exact there, and a difference quotient would only add its
 /// round-off). Under exact stick the Euler predictor is used: the second-order one cost more
 /// Newton iterations there (AR 0.3, τ_max 0.1 MPa, mesh 48: 17.3 to 25.6 per point at μ 1,
-/// 13.3 to 16.9 at μ 10⁻⁶; docs/performance.md).
+/// 13.3 to 16.9 at μ 10⁻⁶; docs/performance.md). With `slip_front`, an unloading step of that
+/// many λ, and no node held: where stuck nodes start to slide in that step, the secant of the
+/// piecewise-linear path through them instead, without curvature ([`piecewise_rate`]).
 pub(crate) fn load_tangent(
     model: &Model,
     asm: &mut Assembly,
     st: &State,
     touched: TouchedNodes,
+    slip_front: Option<f64>,
 ) -> Option<LoadTangent> {
     let f = asm.assemble(model, st, true)?;
     let hold = TouchedHold::at(model, st, touched);
-    let mut rhs = vec![f.dresid_dd.iter().map(|v| -v).collect::<Vec<f64>>()];
-    rhs.extend(hold.unit_loads(f.dresid_dd.len()));
+    let load_column: Vec<f64> = f.dresid_dd.iter().map(|v| -v).collect();
+    let mut rhs = vec![load_column.clone()];
+    rhs.extend(hold.unit_loads(load_column.len()));
     asm.sys.solve(&mut rhs).ok()?;
     let mut rate = rhs.remove(0);
+    if let Some(dd) = slip_front.filter(|_| hold.is_empty()) {
+        if let Some(rate) = piecewise_rate(model, asm, &load_column, &rate, dd) {
+            return Some(LoadTangent {
+                rate,
+                curvature: None,
+                third_order: None,
+            });
+        }
+    }
     let eps = difference_step(model);
     let hold = (hold.with_responses(rhs)).limited_by_friction(model, asm, (st, &rate), eps)?;
     hold.hold_rate(&mut rate);
@@ -210,9 +224,26 @@ pub(crate) fn tangent_at(
     opts: &SolveOptions,
     st: &State,
 ) -> Option<LoadTangent> {
-    opts.steps
-        .tangent_predictor
-        .then(|| load_tangent(model, asm, st, opts.steps.touched_nodes))
+    let touched = opts.steps.touched_nodes;
+    (opts.steps.tangent_predictor)
+        .then(|| load_tangent(model, asm, st, touched, None))
+        .flatten()
+}
+
+/// [`tangent_at`] for an unloading step of `dd` (units of λ): with the slip front followed
+/// ([`StepOptions::slip_front`]), where stuck nodes start to slide in the step, the secant of the
+/// piecewise-linear path through them ([`piecewise_rate`]), without the path's curvature.
+pub(crate) fn unloading_tangent_at(
+    model: &Model,
+    asm: &mut Assembly,
+    opts: &SolveOptions,
+    st: &State,
+    dd: f64,
+) -> Option<LoadTangent> {
+    let touched = opts.steps.touched_nodes;
+    let slip_front = (opts.steps.slip_front == SlipFront::Followed).then_some(dd);
+    (opts.steps.tangent_predictor)
+        .then(|| load_tangent(model, asm, st, touched, slip_front))
         .flatten()
 }
 
@@ -389,8 +420,8 @@ mod tests {
     #[test]
     fn the_predictor_is_second_order_along_the_path() {
         let (model, mut asm, before, last) = loaded();
-        let tangent =
-            load_tangent(&model, &mut asm, &last, TouchedNodes::Held).expect("a converged state");
+        let tangent = load_tangent(&model, &mut asm, &last, TouchedNodes::Held, None)
+            .expect("a converged state");
         assert!(
             tangent.curvature().is_some(),
             "frictionless: the curvature is computed"
@@ -429,8 +460,8 @@ mod tests {
         frictionless.friction = None;
         let mut frictionless_asm = Assembly::new(&frictionless);
         let curvature = |model: &Model, asm: &mut Assembly| {
-            let tangent =
-                load_tangent(model, asm, last, TouchedNodes::Held).expect("a converged state");
+            let tangent = load_tangent(model, asm, last, TouchedNodes::Held, None)
+                .expect("a converged state");
             tangent.curvature().expect("finite kinematics").to_vec()
         };
         let reference = curvature(&frictionless, &mut frictionless_asm);
@@ -440,7 +471,7 @@ mod tests {
             gap.fold(0.0, f64::max) / scale
         };
         let smooth = apart(&curvature(&model, &mut asm));
-        let rate = load_tangent(&model, &mut asm, last, TouchedNodes::Held)
+        let rate = load_tangent(&model, &mut asm, last, TouchedNodes::Held, None)
             .expect("converged")
             .rate;
         let as_they_are = SmoothPieces {
@@ -466,11 +497,11 @@ mod tests {
     fn the_third_order_term_measured_on_a_step_predicts_the_next() {
         let (model, mut asm, _, states) = loaded_sinusoid(0.3, 0.2);
         let [first, second, third] = [3, 2, 1].map(|back| states[states.len() - back].clone());
-        let tangent_first =
-            load_tangent(&model, &mut asm, &first, TouchedNodes::Held).expect("a converged state");
+        let tangent_first = load_tangent(&model, &mut asm, &first, TouchedNodes::Held, None)
+            .expect("a converged state");
         let term = third_order_term(&model, &first, &tangent_first, &second).expect("a term");
-        let tangent =
-            load_tangent(&model, &mut asm, &second, TouchedNodes::Held).expect("a converged state");
+        let tangent = load_tangent(&model, &mut asm, &second, TouchedNodes::Held, None)
+            .expect("a converged state");
         let dd = third.d - second.d;
         let without = predictor(&model, &second, None, dd, Some(&tangent)).expect("not inverted");
         let tangent = tangent.with_third_order(Some(term.clone()));

@@ -70,6 +70,11 @@ impl TouchedHold {
         }
     }
 
+    /// No node is held.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
     /// The unit force `e_i` on each held slot, as right-hand sides of length `dofs`.
     pub(crate) fn unit_loads(&self, dofs: usize) -> impl Iterator<Item = Vec<f64>> + '_ {
         self.nodes.iter().map(move |&(_, s)| {
