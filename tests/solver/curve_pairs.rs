@@ -1,5 +1,5 @@
 //! Two curves of one problem solved two ways, compared point by point.
-use wavy::fe::{Curve, MeshLevel, NewtonOptions, SolveOptions};
+use wavy::fe::{Curve, MeshLevel, NewtonOptions, SolveOptions, StepOptions};
 
 /// The options of a curve on the coarse mesh to a/λ 0.4, Newton's default options changed by
 /// `choose`: the cheap curve on which a choice of the Newton method is shown to change the path,
@@ -13,6 +13,13 @@ pub(crate) fn coarse_to_0_4(choose: impl FnOnce(&mut NewtonOptions)) -> SolveOpt
         newton,
         ..Default::default()
     }
+}
+
+/// [`coarse_to_0_4`] with the stepping options as `choose` sets them.
+pub(crate) fn coarse_steps_to_0_4(choose: impl FnOnce(&mut StepOptions)) -> SolveOptions {
+    let mut opts = coarse_to_0_4(|_| {});
+    choose(&mut opts.steps);
+    opts
 }
 
 /// The largest relative difference of a/λ and p̄/E* between the points of `a` and `b`, which

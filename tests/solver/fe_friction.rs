@@ -3,7 +3,7 @@
 //! (`wavy::fe::shear_test`). Reference: the Coulomb–Orowan law itself (R3): the total
 //! friction force of a sliding face is Σ min(μ N_i, τ_max ℓ_i), which is μ p̄ W when
 //! Coulomb governs everywhere and τ_max × (deformed face length) when Orowan does.
-use crate::curve_pairs::{coarse_to_0_4, largest_relative_difference};
+use crate::curve_pairs::{coarse_steps_to_0_4, coarse_to_0_4, largest_relative_difference};
 use std::ops::ControlFlow;
 use wavy::fe::shear_test::{press_and_shear, ShearPoint, ShearTest};
 use wavy::fe::CoulombOrowan;
@@ -180,29 +180,47 @@ fn semismooth_branch_choice_changes_the_path_not_the_curve() {
 #[test]
 fn returning_into_the_band_changes_the_path_not_the_curve() {
     let opts = |return_into_band| coarse_to_0_4(|n| n.return_into_band = return_into_band);
+    let [with, without] = same_loops(
+        &[0.1, 0.2],
+        [("with", &opts(true)), ("without", &opts(false))],
+        Branches::Both,
+    );
+    assert!(with < without, "{with} against {without}");
+}
+
+/// Which branches of a loop [`same_loops`] counts the Newton iterations of.
+#[derive(Clone, Copy)]
+enum Branches {
+    Both,
+    Unloading,
+}
+
+/// The AR 0.3 loops ([`loop_with`]) at each τ_max/E* of `taus` solved with two named option sets,
+/// asserted the same curve ([`assert_same_curve`]); returns the Newton iterations each took over
+/// all the loops, on `branches`.
+fn same_loops(taus: &[f64], solves: [(&str, &SolveOptions); 2], branches: Branches) -> [usize; 2] {
     let iterations = |c: &Curve| {
-        (c.points.iter().chain(&c.unloading))
+        let loading = match branches {
+            Branches::Both => c.points.as_slice(),
+            Branches::Unloading => &[],
+        };
+        (loading.iter().chain(&c.unloading))
             .map(|p| p.newton_iterations)
             .sum::<usize>()
     };
-    let (mut with_total, mut without_total) = (0, 0);
-    for tau_max_over_estar in [0.1, 0.2] {
-        let with = loop_with(0.3, tau_max_over_estar, &opts(true));
-        let without = loop_with(0.3, tau_max_over_estar, &opts(false));
-        let largest = largest_relative_difference(&with, &without)
-            .max(largest_unloading_difference(&with, &without));
-        let counts = [
-            ("with", iterations(&with)),
-            ("without", iterations(&without)),
-        ];
+    let [(a, opts_a), (b, opts_b)] = solves;
+    let mut totals = [0, 0];
+    for &tau_max_over_estar in taus {
+        let first = loop_with(0.3, tau_max_over_estar, opts_a);
+        let second = loop_with(0.3, tau_max_over_estar, opts_b);
+        let largest = largest_relative_difference(&first, &second)
+            .max(largest_unloading_difference(&first, &second));
+        let counts = [(a, iterations(&first)), (b, iterations(&second))];
         assert_same_curve(tau_max_over_estar, largest, counts);
-        with_total += iterations(&with);
-        without_total += iterations(&without);
+        totals[0] += counts[0].1;
+        totals[1] += counts[1].1;
     }
-    assert!(
-        with_total < without_total,
-        "{with_total} against {without_total}"
-    );
+    totals
 }
 
 /// Prints how far two solves of one case lie apart (`largest`, relative) and the Newton
@@ -245,11 +263,7 @@ fn largest_unloading_difference(a: &Curve, b: &Curve) -> f64 {
 /// against 159 and 161).
 #[test]
 fn holding_the_touched_node_in_the_tangent_changes_the_path_not_the_curve() {
-    let opts = |touched_nodes| {
-        let mut opts = coarse_to_0_4(|_| {});
-        opts.steps.touched_nodes = touched_nodes;
-        opts
-    };
+    let opts = |touched| coarse_steps_to_0_4(|s| s.touched_nodes = touched);
     let iterations = |c: &Curve| c.points.iter().map(|p| p.newton_iterations).sum::<usize>();
     for tau_max_over_estar in [0.1, 0.2] {
         let held = curve_with(0.3, tau_max_over_estar, &opts(TouchedNodes::Held));
@@ -271,35 +285,16 @@ fn holding_the_touched_node_in_the_tangent_changes_the_path_not_the_curve() {
 /// and 213 against 187 and 222).
 #[test]
 fn following_the_slip_front_changes_the_path_not_the_curve() {
-    let opts = |slip_front| {
-        let mut opts = coarse_to_0_4(|_| {});
-        opts.steps.slip_front = slip_front;
-        opts
-    };
-    let iterations = |c: &Curve| {
-        c.unloading
-            .iter()
-            .map(|p| p.newton_iterations)
-            .sum::<usize>()
-    };
-    let (mut followed_total, mut held_total) = (0, 0);
-    for tau_max_over_estar in [0.02, 0.05] {
-        let followed = loop_with(0.3, tau_max_over_estar, &opts(SlipFront::Followed));
-        let held = loop_with(0.3, tau_max_over_estar, &opts(SlipFront::Held));
-        let largest = largest_relative_difference(&followed, &held)
-            .max(largest_unloading_difference(&followed, &held));
-        let counts = [
-            ("followed", iterations(&followed)),
-            ("held", iterations(&held)),
-        ];
-        assert_same_curve(tau_max_over_estar, largest, counts);
-        followed_total += iterations(&followed);
-        held_total += iterations(&held);
-    }
-    assert!(
-        followed_total < held_total,
-        "{followed_total} against {held_total}"
+    let opts = |slip_front| coarse_steps_to_0_4(|s| s.slip_front = slip_front);
+    let [followed, held] = same_loops(
+        &[0.02, 0.05],
+        [
+            ("followed", &opts(SlipFront::Followed)),
+            ("held", &opts(SlipFront::Held)),
+        ],
+        Branches::Unloading,
     );
+    assert!(followed < held, "{followed} against {held}");
 }
 
 /// Exact stick (`elastic_slip_over_element = 0`): the decision stiffness `c_t` of the
