@@ -1,9 +1,9 @@
 //! A displacement-controlled load step: from a converged state to a slab displacement, predicted
 //! along the load path ([`crate::fe::stepping::predictor`]) and equilibrated with its active set.
-//! The loading curve's steps between events and the release searches take it as it is
-//! ([`displacement_step`]); the unloading branch's steps first let go of the tensile contact
-//! edges of their prediction, and are cut instead of started from a crude guess
-//! ([`unloading_step`]).
+//! The loading curve's steps between events and the searches take it as it is
+//! ([`displacement_step`]); the unloading branch's steps are predicted through their slip front,
+//! first let go of the tensile contact edges of their prediction, and are cut instead of started
+//! from a crude guess ([`unloading_step`]).
 
 use crate::fe::error::{FailCause, StepFail};
 use crate::fe::model::{Model, State};
@@ -36,8 +36,7 @@ pub(crate) fn displacement_step(
         from,
         d,
         hold,
-        contact: PredictedContact::Kept,
-        fallback: Fallback::Crude,
+        direction: Direction::Loading,
     }
     .taken(model, asm, opts)
 }
@@ -50,9 +49,11 @@ pub(crate) fn displacement_step(
 /// (−11 to −29 % of the unloading's iterations on the mesh-48 loops), not the state it converges
 /// to, wherever the step has one state; where it has two (at μ 100 an edge node in contact with
 /// a small force, or free and clear of the indenter) it may find the other (docs/performance.md,
-/// "the tensile edge released at the prediction"). A step whose every Taylor prediction inverts
-/// an element fails at once, unsolved, and the unloading branch cuts it: Newton from a crude
-/// guess spent 30 iterations and failed there (docs/performance.md, "the crude guess").
+/// "the tensile edge released at the prediction"). Its prediction follows the stuck nodes that
+/// start to slide in the step ([`unloading_tangent_at`], [`crate::fe::stepping::slip_front`]). A
+/// step whose every Taylor prediction inverts an element fails at once, unsolved, and the
+/// unloading branch cuts it: Newton from a crude guess spent 30 iterations and failed there
+/// (docs/performance.md, "an unloading step without a Taylor prediction is cut").
 pub(crate) fn unloading_step(
     model: &Model,
     asm: &mut Assembly,
@@ -64,41 +65,34 @@ pub(crate) fn unloading_step(
         from,
         d,
         hold: Hold::NONE,
-        contact: PredictedContact::EdgesReleased,
-        fallback: Fallback::Fail,
+        direction: Direction::Unloading,
     }
     .taken(model, asm, opts)
 }
 
-/// What a displacement step does to the contact set of its predicted state before Newton.
+/// The branch a displacement step belongs to, which decides what it does besides predicting
+/// along the load tangent and equilibrating.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum PredictedContact {
-    /// Nothing: the active-set passes release what turns tensile.
-    Kept,
-    /// The contact patches' edge nodes that are tensile there are released ([`unloading_step`]).
-    EdgesReleased,
-}
-
-/// Where a displacement step with a load tangent starts when every Taylor prediction inverts an
-/// element.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Fallback {
-    /// From a crude prediction ([`crude_prediction`]).
-    Crude,
-    /// Nowhere: the step fails unsolved ([`FailCause::Inverted`], no iteration spent).
-    Fail,
+enum Direction {
+    /// A step of the loading curve or a search: its prediction is the load tangent's, from a
+    /// crude one where every Taylor prediction inverts an element ([`crude_prediction`]), and the
+    /// active-set passes release what turns tensile.
+    Loading,
+    /// A step of the unloading branch ([`unloading_step`]): predicted through its slip front
+    /// ([`unloading_tangent_at`]), its contact edges tensile at the prediction released, and
+    /// failed unsolved ([`FailCause::Inverted`], no iteration spent) where every Taylor
+    /// prediction inverts an element.
+    Unloading,
 }
 
 /// A displacement-controlled step: from the converged state `from` to the slab displacement `d`,
-/// the nodes of `hold` kept as they are, the predicted state's contact set as `contact` says and
-/// its start where the Taylor predictions invert as `fallback` says ([`displacement_step`],
+/// the nodes of `hold` kept as they are, as its `direction` does ([`displacement_step`],
 /// [`unloading_step`]).
 struct Step<'a> {
     from: &'a State,
     d: f64,
     hold: Hold,
-    contact: PredictedContact,
-    fallback: Fallback,
+    direction: Direction,
 }
 
 impl Step<'_> {
@@ -111,9 +105,9 @@ impl Step<'_> {
         asm: &mut Assembly,
         opts: &SolveOptions,
     ) -> Result<(State, usize), StepFail> {
-        let tangent = match self.contact {
-            PredictedContact::Kept => tangent_at(model, asm, opts, self.from),
-            PredictedContact::EdgesReleased => {
+        let tangent = match self.direction {
+            Direction::Loading => tangent_at(model, asm, opts, self.from),
+            Direction::Unloading => {
                 unloading_tangent_at(model, asm, opts, self.from, self.d - self.from.d)
             }
         };
@@ -136,8 +130,8 @@ impl Step<'_> {
     }
 
     /// The predicted state at `d` along `tangent` ([`taylor_prediction`]), with the terms it kept;
-    /// without a tangent, or where every Taylor prediction inverts and `fallback` is
-    /// [`Fallback::Crude`], a crude one (no terms, `None`).
+    /// without a tangent, or loading where every Taylor prediction inverts, a crude one (no
+    /// terms, `None`).
     fn predicted(
         &self,
         model: &Model,
@@ -145,11 +139,11 @@ impl Step<'_> {
     ) -> Result<(State, Option<TaylorOrder>), StepFail> {
         let dd = self.d - self.from.d;
         let crude = || crude_prediction(model, self.from, None, dd).map(|st| (st, None));
-        let predicted = match (tangent, self.fallback) {
+        let predicted = match (tangent, self.direction) {
             (None, _) => crude(),
-            (Some(z), fallback) => match taylor_prediction(model, self.from, dd, z) {
+            (Some(z), direction) => match taylor_prediction(model, self.from, dd, z) {
                 Some((st, order)) => Some((st, Some(order))),
-                None if fallback == Fallback::Crude => crude(),
+                None if direction == Direction::Loading => crude(),
                 None => None,
             },
         };
@@ -162,8 +156,8 @@ impl Step<'_> {
         Ok((st, order))
     }
 
-    /// The predicted state `st` (the contact edges it holds in tension released, as `contact`
-    /// says) equilibrated, with its Newton iterations.
+    /// The predicted state `st` (unloading, the contact edges it holds in tension released)
+    /// equilibrated, with its Newton iterations.
     fn equilibrated(
         &self,
         model: &Model,
@@ -171,7 +165,7 @@ impl Step<'_> {
         opts: &SolveOptions,
         mut st: State,
     ) -> Result<(State, usize), StepFail> {
-        if self.contact == PredictedContact::EdgesReleased {
+        if self.direction == Direction::Unloading {
             release_tensile_edges(model, asm, opts, &mut st);
         }
         let iters = equilibrate(model, asm, &mut st, opts, self.hold)?;
