@@ -95,7 +95,10 @@ pub(crate) fn solve_newton_step(
             &unreturned
         }
     };
-    let with_load_column = rhs.len() > 1;
+    let columns = match rhs.len() > 1 {
+        true => RightHandSides::ResidualAndLoad,
+        false => RightHandSides::Residual,
+    };
     let mut choice = PieceChoice {
         exact: law.exact_stick(),
         assumed: rows.iter().map(|r| r.at).collect(),
@@ -114,12 +117,7 @@ pub(crate) fn solve_newton_step(
                 return None;
             }
             choice.assumed = landed;
-            Some(row_changes(
-                rows,
-                &choice.assumed,
-                law.slip_c,
-                with_load_column,
-            ))
+            Some(row_changes(rows, &choice.assumed, law.slip_c, columns))
         });
     let switched = switching.map_err(failed)?;
     if !law.exact_stick() {
@@ -178,24 +176,33 @@ impl PieceChoice {
     }
 }
 
+/// The right-hand sides a row change updates: the residual's `−r`, with the load column
+/// `−∂r/∂d` for the bordered solve, or the load column alone for the load tangent.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(in crate::fe) enum RightHandSides {
+    Residual,
+    ResidualAndLoad,
+    Load,
+}
+
 /// The row changes that put each friction row whose piece in `pieces` differs from its
-/// assembled one on that piece ([`FrictionRow::switched`]; with the load column's right-hand
-/// side where the solve has one).
-fn row_changes(
+/// assembled one on that piece ([`FrictionRow::switched`]), on the right-hand sides `columns`.
+pub(in crate::fe) fn row_changes(
     rows: &[FrictionRow],
     pieces: &[LawPiece],
     slip_c: f64,
-    with_load_column: bool,
+    columns: RightHandSides,
 ) -> Vec<RowChange> {
     rows.iter()
         .zip(pieces)
         .filter(|(r, &b)| r.at != b)
         .map(|(r, &b)| {
             let (entries, d_resid, d_resid_dd) = r.switched(b, slip_c);
-            let mut rhs = vec![-d_resid];
-            if with_load_column {
-                rhs.push(-d_resid_dd);
-            }
+            let rhs = match columns {
+                RightHandSides::Residual => vec![-d_resid],
+                RightHandSides::ResidualAndLoad => vec![-d_resid, -d_resid_dd],
+                RightHandSides::Load => vec![-d_resid_dd],
+            };
             RowChange {
                 row: r.row,
                 entries,

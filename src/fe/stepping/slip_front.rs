@@ -17,10 +17,10 @@
 use serde::{Deserialize, Serialize};
 
 use crate::fe::contact::friction::{Branch, Regime};
-use crate::fe::linsys::RowChange;
 use crate::fe::model::Model;
 use crate::fe::newton::assembly::Assembly;
 use crate::fe::newton::friction_rows::{FrictionRow, LawPiece};
+use crate::fe::newton::friction_step::{row_changes, RightHandSides};
 
 /// How an unloading step's prediction treats the stuck nodes that start to slide in it (under the
 /// penalty friction law; loading steps and exact stick take the load tangent as it is).
@@ -122,7 +122,7 @@ fn advance(moved: &mut [f64], rate: &[f64], step: f64) {
 }
 
 /// The tangent's rate with each friction row on its piece in `pieces` (those that differ from
-/// the assembled one changed, [`FrictionRow::switched`]).
+/// the assembled one changed, [`row_changes`]).
 fn solved_on(
     asm: &mut Assembly,
     rows: &[FrictionRow],
@@ -130,17 +130,7 @@ fn solved_on(
     load_column: &[f64],
     slip_c: f64,
 ) -> Option<Vec<f64>> {
-    let changes: Vec<RowChange> = (rows.iter().zip(pieces))
-        .filter(|(r, piece)| r.at != **piece)
-        .map(|(r, &piece)| {
-            let (entries, _, d_resid_dd) = r.switched(piece, slip_c);
-            RowChange {
-                row: r.row,
-                entries,
-                rhs: vec![-d_resid_dd],
-            }
-        })
-        .collect();
+    let changes = row_changes(rows, pieces, slip_c, RightHandSides::Load);
     let mut rhs = vec![load_column.to_vec()];
     let mut shown = false;
     let switched = asm.sys.solve_switching_rows(&mut rhs, 1, |_| {
