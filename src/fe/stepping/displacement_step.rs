@@ -43,8 +43,9 @@ pub(crate) fn displacement_step(
 
 /// An unloading step from the converged state `from` to the slab displacement `d`: a
 /// [`displacement_step`] whose predicted state first lets go of the contact patches' edge nodes
-/// that are tensile there ([`release_tensile_edges`]), as the contact recedes from its edges,
-/// instead of holding them through a first active-set pass. A node so released that the step
+/// that are tensile there or, with friction, by their force linearised from `from`
+/// ([`release_tensile_edges`]), as the contact recedes from its edges, instead of holding them
+/// through a first active-set pass. A node so released that the step
 /// puts back keeps its history ([`Model::activate`]), so the release changes Newton's path
 /// (−11 to −29 % of the unloading's iterations on the mesh-48 loops), not the state it converges
 /// to, wherever the step has one state; where it has two (at μ 100 an edge node in contact with
@@ -166,7 +167,7 @@ impl Step<'_> {
         mut st: State,
     ) -> Result<(State, usize), StepFail> {
         if self.direction == Direction::Unloading {
-            release_tensile_edges(model, asm, opts, &mut st);
+            release_tensile_edges(model, asm, opts, self.from, &mut st);
         }
         let iters = equilibrate(model, asm, &mut st, opts, self.hold)?;
         Ok((st, iters))
@@ -177,7 +178,9 @@ impl Step<'_> {
 mod tests {
     use super::*;
     use crate::fe::error::SolveError;
+    use crate::fe::newton::active_set::release_forces;
     use crate::fe::stepping::test_fixtures::loaded_sinusoid_with;
+    use crate::fe::stepping::unloading::released_at_zero_force;
     use crate::fe::Interface;
 
     /// The coarse AR 0.3 sinusoid with τ_max/E* 0.1 and μ 1, loaded to a/λ 0.3 event by event:
@@ -188,6 +191,54 @@ mod tests {
         let loaded = states.pop().expect("a loaded state");
         let before = states.pop().expect("a state before it");
         (model, asm, opts, loaded, before)
+    }
+
+    /// The release test of an unloading step's prediction finds, by the edge's force linearised
+    /// from the step's start, edges that the prediction's own force holds compressive, and
+    /// releases none that the step does not release. The coarse AR 0.3 sinusoid of [`loaded`]
+    /// unloaded through its last seven loading displacements as the unloading branch does: at 3
+    /// of them the prediction's force of the edge released there is compressive, and at each
+    /// the nodes released at the prediction are free where the plain displacement step (nothing
+    /// released at the prediction) converges.
+    #[test]
+    fn the_linearised_edge_force_releases_what_the_step_releases() {
+        let interface = Interface::coulomb_orowan(1.0, 0.1, 0.005);
+        let (model, mut asm, opts, states) = loaded_sinusoid_with(0.3, 0.3, interface);
+        let mut base = states.last().expect("a loaded state").clone();
+        let mut found_by_linearisation = 0;
+        for target in states.iter().rev().skip(1).take(7) {
+            base = released_at_zero_force(&model, &mut asm, &base).unwrap_or(base);
+            let step = Step {
+                from: &base,
+                d: target.d,
+                hold: Hold::NONE,
+                direction: Direction::Unloading,
+            };
+            let tangent = unloading_tangent_at(&model, &mut asm, &opts, &base, target.d - base.d);
+            let (mut st, _) = step
+                .predicted(&model, tangent.as_ref())
+                .expect("a prediction");
+            let grad = asm.assemble(&model, &st, false).expect("not inverted").grad;
+            let at_prediction = release_forces(&model, &st, &grad);
+            let active = st.active.clone();
+            release_tensile_edges(&model, &mut asm, &opts, &base, &mut st);
+            let released: Vec<usize> = (0..active.len())
+                .filter(|&k| active[k] && !st.active[k])
+                .collect();
+            let (plain, _) =
+                displacement_step(&model, &mut asm, &opts, &base, target.d, Hold::NONE)
+                    .expect("the plain step");
+            println!("d/λ {:.5}: released {released:?}", target.d);
+            for &k in &released {
+                assert!(!plain.active[k], "d/λ {}: node {k} in contact", target.d);
+                found_by_linearisation += usize::from(at_prediction[k] >= 0.0);
+            }
+            let (mut next, _) = unloading_step(&model, &mut asm, &opts, &base, target.d)
+                .expect("the unloading step");
+            asm.commit_slip(&model, &mut next);
+            base = next;
+        }
+        assert_eq!(found_by_linearisation, 3);
     }
 
     /// A failed step counts every Newton iteration it spent: both tries, the curved prediction's
