@@ -45,16 +45,16 @@ pub(crate) fn displacement_step(
 /// [`displacement_step`] whose predicted state first lets go of the contact patches' edge nodes
 /// that are tensile there or, with friction, by their force linearised from `from`
 /// ([`release_tensile_edges`]), as the contact recedes from its edges, instead of holding them
-/// through a first active-set pass. A node so released that the step
-/// puts back keeps its history ([`Model::activate`]), so the release changes Newton's path
-/// (−11 to −29 % of the unloading's iterations on the mesh-48 loops), not the state it converges
-/// to, wherever the step has one state; where it has two (at μ 100 an edge node in contact with
-/// a small force, or free and clear of the indenter) it may find the other (docs/performance.md,
-/// "the tensile edge released at the prediction"). Its prediction follows the stuck nodes that
-/// start to slide in the step ([`unloading_tangent_at`], [`crate::fe::stepping::slip_front`]). A
-/// step whose every Taylor prediction inverts an element fails at once, unsolved, and the
-/// unloading branch cuts it: Newton from a crude guess spent 30 iterations and failed there
-/// (docs/performance.md, "an unloading step without a Taylor prediction is cut").
+/// through a first active-set pass. A node so released that the step puts back keeps its history
+/// ([`Model::activate`]), so the release changes Newton's path (−11 to −29 % of the unloading's
+/// iterations on the mesh-48 loops), not the state it converges to, wherever the step has one
+/// state; where it has two (at μ 100 an edge node in contact with a small force, or free and clear
+/// of the indenter) it may find the other (docs/performance.md, "the tensile edge released at the
+/// prediction"). Its prediction follows the stuck nodes that start to slide in the step
+/// ([`unloading_tangent_at`], [`crate::fe::stepping::slip_front`]). A step whose every Taylor
+/// prediction inverts an element fails at once, unsolved, and the unloading branch cuts it: Newton
+/// from a crude guess spent 30 iterations and failed there (docs/performance.md, "an unloading step
+/// without a Taylor prediction is cut").
 pub(crate) fn unloading_step(
     model: &Model,
     asm: &mut Assembly,
@@ -184,10 +184,16 @@ mod tests {
     use crate::fe::Interface;
 
     /// The coarse AR 0.3 sinusoid with τ_max/E* 0.1 and μ 1, loaded to a/λ 0.3 event by event:
-    /// the model, its assembly, the options and the loaded state with the one before it.
-    fn loaded() -> (Model, Assembly, SolveOptions, State, State) {
+    /// the model, its assembly, the options and the converged state of every event.
+    fn loaded_states() -> (Model, Assembly, SolveOptions, Vec<State>) {
         let interface = Interface::coulomb_orowan(1.0, 0.1, 0.005);
-        let (model, asm, opts, mut states) = loaded_sinusoid_with(0.3, 0.3, interface);
+        loaded_sinusoid_with(0.3, 0.3, interface)
+    }
+
+    /// [`loaded_states`]' model, assembly and options, with its loaded state and the one before
+    /// it.
+    fn loaded() -> (Model, Assembly, SolveOptions, State, State) {
+        let (model, asm, opts, mut states) = loaded_states();
         let loaded = states.pop().expect("a loaded state");
         let before = states.pop().expect("a state before it");
         (model, asm, opts, loaded, before)
@@ -195,15 +201,14 @@ mod tests {
 
     /// The release test of an unloading step's prediction finds, by the edge's force linearised
     /// from the step's start, edges that the prediction's own force holds compressive, and
-    /// releases none that the step does not release. The coarse AR 0.3 sinusoid of [`loaded`]
+    /// releases none that the step does not release. The sinusoid of [`loaded_states`]
     /// unloaded through its last seven loading displacements as the unloading branch does: at 3
     /// of them the prediction's force of the edge released there is compressive, and at each
     /// the nodes released at the prediction are free where the plain displacement step (nothing
     /// released at the prediction) converges.
     #[test]
     fn the_linearised_edge_force_releases_what_the_step_releases() {
-        let interface = Interface::coulomb_orowan(1.0, 0.1, 0.005);
-        let (model, mut asm, opts, states) = loaded_sinusoid_with(0.3, 0.3, interface);
+        let (model, mut asm, opts, states) = loaded_states();
         let mut base = states.last().expect("a loaded state").clone();
         let mut found_by_linearisation = 0;
         for target in states.iter().rev().skip(1).take(7) {
