@@ -99,78 +99,44 @@ pub(crate) fn release_forces(model: &Model, st: &State, grad: &[f64]) -> Vec<f64
 }
 
 /// Releases the contact patches' edge nodes (active, with a free neighbour on the face) of the
-/// state `st` predicted for a step from the converged state `from` whose release force
-/// ([`release_forces`]) fails the active-set passes' release test (`multiplier_rtol`) at `st`
-/// or, with friction, linearised from `from` along the step
-/// ([`chord_linearised_release_forces`]); nothing where `st` is inverted. For an unloading
-/// step's predicted state ([`crate::fe::stepping::displacement_step::unloading_step`]).
+/// predicted state `st` whose release force ([`release_forces`]) fails the active-set passes'
+/// release test (`multiplier_rtol`); nothing where `st` is inverted. For an unloading step's
+/// predicted state ([`crate::fe::stepping::displacement_step::unloading_step`]).
 ///
-/// The two tests find different edges. The force at the prediction carries the prediction's
-/// error, largest at the edge (a node on the indenter's slope put a little off where it
-/// converges carries up to the largest force of the face), and finds the edges that turn
-/// tensile by much; the linearised force finds those that the slip front unloads gradually,
-/// which the prediction holds compressive (docs/performance.md, "the edge's force
-/// linearised"). Without friction the unloading branch steps from release event to release
-/// event, where the edge's force vanishes, so the sign of its linearisation is that of its
-/// error: there the test at the prediction alone decides.
+/// With friction the forces are the mixed method's where `st` carries the element pressures
+/// predicted with its positions ([`Model::iterate_forces`],
+/// [`crate::fe::stepping::predictor::taylor_prediction`]): the displacement method's carry `κ`
+/// times the error of the predicted element areas, which at the contact's edge makes the edge
+/// node's force the largest of the face, of either sign, where it converges near zero
+/// (docs/performance.md, "the prediction's force from its predicted pressures"). Without
+/// friction the unloading branch steps from release event to release event, so the edge's
+/// force vanishes at each step's end and the reading decides between two valid states; there
+/// the displacement method's forces are kept (the predicted pressures' stopped a coarse AR 0.4
+/// loop with an inverted element, the same page).
 pub(crate) fn release_tensile_edges(
     model: &Model,
     asm: &mut Assembly,
     opts: &SolveOptions,
-    from: &State,
     st: &mut State,
 ) {
-    let linearised = match model.is_potential() {
-        true => None,
-        false => chord_linearised_release_forces(model, asm, from, st),
-    };
     let Some(f) = asm.assemble(model, st, false) else {
         return;
     };
-    let at_prediction = release_forces(model, st, &f.grad);
-    let fails = |forces: &[f64], k: usize| forces[k] < release_threshold(opts, forces);
-    let tensile =
-        |k: usize| fails(&at_prediction, k) || linearised.as_ref().is_some_and(|lin| fails(lin, k));
+    let forces = match model.is_potential() {
+        true => f.grad,
+        false => model.iterate_forces(st, &f.grad).unwrap_or(f.grad),
+    };
+    let release_force = release_forces(model, st, &forces);
+    let threshold = release_threshold(opts, &release_force);
     let n = st.active.len();
     let free = |k: Option<usize>| k.is_some_and(|k| k < n && !st.active[k]);
     let edge = |k: usize| st.active[k] && (free(k.checked_sub(1)) || free(Some(k + 1)));
-    let released: Vec<usize> = (0..n).filter(|&k| edge(k) && tensile(k)).collect();
-    for k in released {
+    let tensile: Vec<usize> = (0..n)
+        .filter(|&k| edge(k) && release_force[k] < threshold)
+        .collect();
+    for k in tensile {
         st.active[k] = false;
     }
-}
-
-/// Where along the chord from the step's start the linearised release forces are differenced
-/// ([`chord_linearised_release_forces`]), as a fraction of the step: small enough that the
-/// forces' curvature along the chord is negligible (its error is this fraction of theirs),
-/// large enough that the difference keeps 13 of the forces' 16 digits.
-const CHORD_FRACTION: f64 = 1e-3;
-
-/// The release forces ([`release_forces`]) of the contact-face nodes of `to`, linearised about
-/// `from` along the chord between them: `r(from) + (r(from + t (to − from)) − r(from)) / t`,
-/// `t` = [`CHORD_FRACTION`], for two states of one contact set (a step's start and its
-/// prediction). `None` where either state is inverted.
-fn chord_linearised_release_forces(
-    model: &Model,
-    asm: &mut Assembly,
-    from: &State,
-    to: &State,
-) -> Option<Vec<f64>> {
-    let mut near = to.clone();
-    for (x, (a, b)) in near.x.iter_mut().zip(from.x.iter().zip(&to.x)) {
-        *x = [0, 1].map(|i| a[i] + CHORD_FRACTION * (b[i] - a[i]));
-    }
-    near.d = from.d + CHORD_FRACTION * (to.d - from.d);
-    near.dx = from.dx + CHORD_FRACTION * (to.dx - from.dx);
-    model.enforce_constraints(&mut near);
-    let mut forces = |st: &State| {
-        let f = asm.assemble(model, st, false)?;
-        Some(release_forces(model, st, &f.grad))
-    };
-    let at_start = forces(from)?;
-    let near_start = forces(&near)?;
-    let linearised = |(r0, r1): (&f64, &f64)| r0 + (r1 - r0) / CHORD_FRACTION;
-    Some(at_start.iter().zip(&near_start).map(linearised).collect())
 }
 
 /// The release test's threshold on `release_force` ([`release_forces`]): `−multiplier_rtol`

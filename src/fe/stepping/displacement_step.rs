@@ -43,9 +43,8 @@ pub(crate) fn displacement_step(
 
 /// An unloading step from the converged state `from` to the slab displacement `d`: a
 /// [`displacement_step`] whose predicted state first lets go of the contact patches' edge nodes
-/// that are tensile there or, with friction, by their force linearised from `from`
-/// ([`release_tensile_edges`]), as the contact recedes from its edges, instead of holding them
-/// through a first active-set pass. A node so released that the step puts back keeps its history
+/// that are tensile there ([`release_tensile_edges`], the forces of its predicted pressures), as
+/// the contact recedes from its edges, instead of holding them through a first active-set pass. A node so released that the step puts back keeps its history
 /// ([`Model::activate`]), so the release changes Newton's path (−11 to −29 % of the unloading's
 /// iterations on the mesh-48 loops), not the state it converges to, wherever the step has one
 /// state; where it has two (at μ 100 an edge node in contact with a small force, or free and clear
@@ -167,7 +166,7 @@ impl Step<'_> {
         mut st: State,
     ) -> Result<(State, usize), StepFail> {
         if self.direction == Direction::Unloading {
-            release_tensile_edges(model, asm, opts, self.from, &mut st);
+            release_tensile_edges(model, asm, opts, &mut st);
         }
         let iters = equilibrate(model, asm, &mut st, opts, self.hold)?;
         Ok((st, iters))
@@ -199,18 +198,18 @@ mod tests {
         (model, asm, opts, loaded, before)
     }
 
-    /// The release test of an unloading step's prediction finds, by the edge's force linearised
-    /// from the step's start, edges that the prediction's own force holds compressive, and
-    /// releases none that the step does not release. The sinusoid of [`loaded_states`]
-    /// unloaded through its last seven loading displacements as the unloading branch does: at 3
-    /// of them the prediction's force of the edge released there is compressive, and at each
-    /// the nodes released at the prediction are free where the plain displacement step (nothing
-    /// released at the prediction) converges.
+    /// The release test of an unloading step's prediction, on the forces of the prediction's
+    /// element pressures, finds edges that the displacement method's forces there hold
+    /// compressive, and releases none that the step does not release. The sinusoid of
+    /// [`loaded_states`] unloaded through its last seven loading displacements as the unloading
+    /// branch does: at 3 of them the displacement method's force of the edge released there is
+    /// compressive, and at each the nodes released at the prediction are free where the plain
+    /// displacement step (nothing released at the prediction) converges.
     #[test]
-    fn the_linearised_edge_force_releases_what_the_step_releases() {
+    fn the_predicted_pressures_release_what_the_step_releases() {
         let (model, mut asm, opts, states) = loaded_states();
         let mut base = states.last().expect("a loaded state").clone();
-        let mut found_by_linearisation = 0;
+        let mut found_by_pressures = 0;
         for target in states.iter().rev().skip(1).take(7) {
             base = released_at_zero_force(&model, &mut asm, &base).unwrap_or(base);
             let step = Step {
@@ -224,9 +223,9 @@ mod tests {
                 .predicted(&model, tangent.as_ref())
                 .expect("a prediction");
             let grad = asm.assemble(&model, &st, false).expect("not inverted").grad;
-            let at_prediction = release_forces(&model, &st, &grad);
+            let displacement_method = release_forces(&model, &st, &grad);
             let active = st.active.clone();
-            release_tensile_edges(&model, &mut asm, &opts, &base, &mut st);
+            release_tensile_edges(&model, &mut asm, &opts, &mut st);
             let released: Vec<usize> = (0..active.len())
                 .filter(|&k| active[k] && !st.active[k])
                 .collect();
@@ -236,14 +235,14 @@ mod tests {
             println!("d/λ {:.5}: released {released:?}", target.d);
             for &k in &released {
                 assert!(!plain.active[k], "d/λ {}: node {k} in contact", target.d);
-                found_by_linearisation += usize::from(at_prediction[k] >= 0.0);
+                found_by_pressures += usize::from(displacement_method[k] >= 0.0);
             }
             let (mut next, _) = unloading_step(&model, &mut asm, &opts, &base, target.d)
                 .expect("the unloading step");
             asm.commit_slip(&model, &mut next);
             base = next;
         }
-        assert_eq!(found_by_linearisation, 3);
+        assert_eq!(found_by_pressures, 3);
     }
 
     /// A failed step counts every Newton iteration it spent: both tries, the curved prediction's
