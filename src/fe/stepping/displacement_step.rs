@@ -44,16 +44,17 @@ pub(crate) fn displacement_step(
 /// An unloading step from the converged state `from` to the slab displacement `d`: a
 /// [`displacement_step`] whose predicted state first lets go of the contact patches' edge nodes
 /// that are tensile there ([`release_tensile_edges`], the forces of its predicted pressures), as
-/// the contact recedes from its edges, instead of holding them through a first active-set pass. A node so released that the step puts back keeps its history
-/// ([`Model::activate`]), so the release changes Newton's path (−11 to −29 % of the unloading's
-/// iterations on the mesh-48 loops), not the state it converges to, wherever the step has one
-/// state; where it has two (at μ 100 an edge node in contact with a small force, or free and clear
-/// of the indenter) it may find the other (docs/performance.md, "the tensile edge released at the
-/// prediction"). Its prediction follows the stuck nodes that start to slide in the step
-/// ([`unloading_tangent_at`], [`crate::fe::stepping::slip_front`]). A step whose every Taylor
-/// prediction inverts an element fails at once, unsolved, and the unloading branch cuts it: Newton
-/// from a crude guess spent 30 iterations and failed there (docs/performance.md, "an unloading step
-/// without a Taylor prediction is cut").
+/// the contact recedes from its edges, instead of holding them through a first active-set pass. A
+/// node so released that the step puts back keeps its history ([`Model::activate`]), so the release
+/// changes Newton's path (−11 to −29 % of the unloading's iterations on the mesh-48 loops), not the
+/// state it converges to, wherever the step has one state; where it has two (at μ 100 an edge node
+/// in contact with a small force, or free and clear of the indenter) it may find the other
+/// (docs/performance.md, "the tensile edge released at the prediction"). Its prediction follows the
+/// stuck nodes that start to slide in the step ([`unloading_tangent_at`],
+/// [`crate::fe::stepping::slip_front`]). A step whose every Taylor prediction inverts an element
+/// fails at once, unsolved, and the unloading branch cuts it: Newton from a crude guess spent 30
+/// iterations and failed there (docs/performance.md, "an unloading step without a Taylor prediction
+/// is cut").
 pub(crate) fn unloading_step(
     model: &Model,
     asm: &mut Assembly,
