@@ -89,15 +89,15 @@ impl std::ops::Deref for LoadTangent {
 /// (the Euler predictor is exact there, and a difference quotient would only add its
 /// round-off). Under exact stick the Euler predictor is used: the second-order one cost more
 /// Newton iterations there (AR 0.3, τ_max 0.1 MPa, mesh 48: 17.3 to 25.6 per point at μ 1,
-/// 13.3 to 16.9 at μ 10⁻⁶; docs/performance.md). With `slip_front`, an unloading step of that
-/// many λ, and no node held: where stuck nodes start to slide in that step, the secant of the
+/// 13.3 to 16.9 at μ 10⁻⁶; docs/performance.md). With `slip_front_step`, an unloading step of
+/// that many λ, and no node held: where stuck nodes start to slide in that step, the secant of the
 /// piecewise-linear path through them instead, without curvature ([`piecewise_rate`]).
 pub(crate) fn load_tangent(
     model: &Model,
     asm: &mut Assembly,
     st: &State,
     touched: TouchedNodes,
-    slip_front: Option<f64>,
+    slip_front_step: Option<f64>,
 ) -> Option<LoadTangent> {
     let f = asm.assemble(model, st, true)?;
     let hold = TouchedHold::at(model, st, touched);
@@ -106,7 +106,7 @@ pub(crate) fn load_tangent(
     rhs.extend(hold.unit_loads(load_column.len()));
     asm.sys.solve(&mut rhs).ok()?;
     let mut rate = rhs.remove(0);
-    if let Some(dd) = slip_front.filter(|_| hold.is_empty()) {
+    if let Some(dd) = slip_front_step.filter(|_| hold.is_empty()) {
         if let Some(rate) = piecewise_rate(model, asm, &load_column, &rate, dd) {
             return Some(LoadTangent {
                 rate,
@@ -224,10 +224,7 @@ pub(crate) fn tangent_at(
     opts: &SolveOptions,
     st: &State,
 ) -> Option<LoadTangent> {
-    let touched = opts.steps.touched_nodes;
-    (opts.steps.tangent_predictor)
-        .then(|| load_tangent(model, asm, st, touched, None))
-        .flatten()
+    tangent_with(model, asm, opts, st, None)
 }
 
 /// [`tangent_at`] for an unloading step of `dd` (units of λ): with the slip front followed
@@ -240,10 +237,21 @@ pub(crate) fn unloading_tangent_at(
     st: &State,
     dd: f64,
 ) -> Option<LoadTangent> {
+    let slip_front_step = (opts.steps.slip_front == SlipFront::Followed).then_some(dd);
+    tangent_with(model, asm, opts, st, slip_front_step)
+}
+
+/// [`load_tangent`] with the options' touched nodes, if [`StepOptions::tangent_predictor`] is on.
+fn tangent_with(
+    model: &Model,
+    asm: &mut Assembly,
+    opts: &SolveOptions,
+    st: &State,
+    slip_front_step: Option<f64>,
+) -> Option<LoadTangent> {
     let touched = opts.steps.touched_nodes;
-    let slip_front = (opts.steps.slip_front == SlipFront::Followed).then_some(dd);
     (opts.steps.tangent_predictor)
-        .then(|| load_tangent(model, asm, st, touched, slip_front))
+        .then(|| load_tangent(model, asm, st, touched, slip_front_step))
         .flatten()
 }
 

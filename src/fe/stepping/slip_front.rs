@@ -130,14 +130,11 @@ fn solved_on(
     load_column: &[f64],
     slip_c: f64,
 ) -> Option<Vec<f64>> {
-    let changes = row_changes(rows, pieces, slip_c, RightHandSides::Load);
+    let mut changes = Some(row_changes(rows, pieces, slip_c, RightHandSides::Load));
     let mut rhs = vec![load_column.to_vec()];
-    let mut shown = false;
-    let switched = asm.sys.solve_switching_rows(&mut rhs, 1, |_| {
-        let first = !shown;
-        shown = true;
-        first.then(|| changes.clone())
-    });
+    let switched = asm
+        .sys
+        .solve_switching_rows(&mut rhs, 1, |_| changes.take());
     let [rate] = <[Vec<f64>; 1]>::try_from(rhs).ok()?;
     matches!(switched, Ok(Some(_))).then_some(rate)
 }

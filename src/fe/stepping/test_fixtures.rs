@@ -1,9 +1,10 @@
-//! The fixtures of the stepping's unit tests: a sinusoid on the coarse mesh, loaded, and the distance
-//! between two states.
+//! The fixtures of the stepping's unit tests: a sinusoid on the coarse mesh, loaded and unloaded,
+//! and the distance between two states.
 
 use crate::fe::model::{Model, State};
 use crate::fe::newton::assembly::Assembly;
 use crate::fe::stepping::loading::loading_branch;
+use crate::fe::stepping::unloading::released_at_zero_force;
 use crate::fe::test_problems::coarse_sinusoid;
 use crate::fe::{build_model, estar_over_g, Interface, SolveOptions};
 
@@ -35,6 +36,26 @@ pub(crate) fn loaded_sinusoid_with(
     })
     .unwrap_or_else(|f| panic!("the coarse AR {aspect_ratio} curve: {}", f.error));
     (model, asm, opts, states)
+}
+
+/// Unloads the last of `states` through the `steps` loading displacements before it as the
+/// unloading branch does: at each, the base's force-free nodes released
+/// ([`released_at_zero_force`]), `step(asm, base, d)` takes the step to `d` and returns its
+/// converged state, whose slip is committed and which is the next base.
+pub(crate) fn unload_through(
+    model: &Model,
+    asm: &mut Assembly,
+    states: &[State],
+    steps: usize,
+    mut step: impl FnMut(&mut Assembly, &State, f64) -> State,
+) {
+    let mut base = states.last().expect("a loaded state").clone();
+    for target in states.iter().rev().skip(1).take(steps) {
+        base = released_at_zero_force(model, asm, &base).unwrap_or(base);
+        let mut next = step(asm, &base, target.d);
+        asm.commit_slip(model, &mut next);
+        base = next;
+    }
 }
 
 /// The largest distance (units of λ, the larger coordinate) of a node of `a` from its place in `b`.

@@ -346,7 +346,9 @@ mod tests {
     use crate::fe::newton::active_set::{equilibrate, Hold};
     use crate::fe::stepping::displacement_step::displacement_step;
     use crate::fe::stepping::predictor::{predictor, tangent_at};
-    use crate::fe::stepping::test_fixtures::{largest_distance, loaded_sinusoid_with};
+    use crate::fe::stepping::test_fixtures::{
+        largest_distance, loaded_sinusoid_with, unload_through,
+    };
     use crate::fe::Interface;
 
     /// The coarse AR 0.3 sinusoid with τ_max/E* 0.1 and μ 1, loaded to a/λ 0.3 event by event.
@@ -411,28 +413,22 @@ mod tests {
     fn releasing_the_tensile_edge_changes_the_path_not_the_state() {
         let (model, mut asm, mut opts, states) = loaded_with_friction();
         opts.steps.slip_front = crate::fe::SlipFront::Held;
-        let mut base = states.last().expect("a loaded state").clone();
         let mut iterations = [0, 0];
-        for target in states.iter().rev().skip(1).take(7) {
-            base = released_at_zero_force(&model, &mut asm, &base).unwrap_or(base);
-            let step = |asm: &mut Assembly, released: bool| match released {
-                false => displacement_step(&model, asm, &opts, &base, target.d, Hold::NONE),
-                true => unloading_step(&model, asm, &opts, &base, target.d),
-            };
-            let (plain, plain_iterations) = step(&mut asm, false).expect("the plain step");
-            let (mut st, released_iterations) = step(&mut asm, true).expect("the unloading step");
+        unload_through(&model, &mut asm, &states, 7, |asm, base, d| {
+            let (plain, plain_iterations) =
+                displacement_step(&model, asm, &opts, base, d, Hold::NONE).expect("the plain step");
+            let (st, released_iterations) =
+                unloading_step(&model, asm, &opts, base, d).expect("the unloading step");
             let apart = largest_distance(&plain, &st);
             println!(
-                "d/λ {:.5}: apart {apart:.2e} λ, {plain_iterations} against {released_iterations} iterations",
-                target.d
+                "d/λ {d:.5}: apart {apart:.2e} λ, {plain_iterations} against {released_iterations} iterations"
             );
-            assert!(apart < 1e-12, "d/λ {}: apart by {apart:.3e} λ", target.d);
+            assert!(apart < 1e-12, "d/λ {d}: apart by {apart:.3e} λ");
             assert_eq!(plain.active, st.active);
             iterations[0] += plain_iterations;
             iterations[1] += released_iterations;
-            asm.commit_slip(&model, &mut st);
-            base = st;
-        }
+            st
+        });
         println!(
             "Newton iterations: {} plain, {} released",
             iterations[0], iterations[1]
