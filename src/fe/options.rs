@@ -225,6 +225,13 @@ pub struct NewtonOptions {
     /// `returning_into_the_band_changes_the_path_not_the_curve`; docs/performance.md, "a node
     /// beyond its band returned to it").
     pub return_into_band: bool,
+    /// With friction, a Newton pass that starts from the predictor's pressure iterate accepts a
+    /// line-search trial where either residual falls enough, the displacement method's or the
+    /// mixed method's ([`crate::fe::newton::mixed_residual::FrictionMerit::Either`]), instead
+    /// of the displacement method's alone. It changes the Newton path, not the converged
+    /// state (test `either_residual_changes_the_path_not_the_curve`; docs/performance.md,
+    /// "either residual").
+    pub either_residual_merit: bool,
 }
 
 impl Default for NewtonOptions {
@@ -242,6 +249,7 @@ impl Default for NewtonOptions {
             stick_decision_stiffness: 1.0,
             pressure_iterate: true,
             return_into_band: true,
+            either_residual_merit: true,
         }
     }
 }

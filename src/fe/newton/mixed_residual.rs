@@ -12,13 +12,89 @@
 //! iterate's pressures (their friction forces read from the same forces,
 //! [`crate::fe::contact::friction::NormalForce`]) and each element's constraint
 //! `v/V − 1 − p/κ` at the size the shear modulus gives a strain error
-//! ([`Model::iterate_constraint_forces`]). Used only where a pass starts from the converged state
-//! of the pass before with a node released or activated: the first pass of a step starts from the
-//! predictor, where the displacement residual's merit measured fewer iterations
-//! (docs/performance.md, "friction's pieces from the iterate's forces").
+//! ([`Model::iterate_constraint_forces`]). Where a pass starts from the converged state of the
+//! pass before with a node released or activated, the line search measures it alone; where a pass
+//! starts from the predictor's iterate, a trial passes where either it or the displacement
+//! method's residual falls enough ([`FrictionMerit`]).
 
 use crate::fe::model::{Model, State};
 use crate::fe::newton::assembly::Forces;
+use crate::fe::newton::l2_norm;
+use crate::fe::NewtonOptions;
+
+/// A line-search merit: the value of a trial state given its forces.
+pub(crate) type Merit = dyn Fn(&Model, &State, &Forces) -> f64;
+
+/// What the line search of a frictional Newton pass must decrease (a frictionless pass
+/// decreases the energy where its step is a descent direction of it, else the displacement
+/// method's residual).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum FrictionMerit {
+    /// The displacement method's residual: a state without a pressure iterate, or a
+    /// frictionless one.
+    Displacement,
+    /// The mixed method's residual ([`mixed_residual_norm`]): a pass after an active-set
+    /// change, started from the converged state of the pass before with its own pressures as
+    /// the iterate. Alone there, as either residual measured more iterations
+    /// (docs/performance.md, "either residual").
+    Mixed,
+    /// Either residual falling by the sufficient decrease, the displacement method's or the
+    /// mixed method's: a pass that starts from the predictor's iterate. The displacement
+    /// residual alone rejects full steps for `κ` times their area error, which the next step
+    /// removes; the mixed residual alone accepts steps of round-off length where the pieces of
+    /// the law that the step was solved on are not the ones it lands on, and the pass stalls
+    /// (docs/performance.md, "either residual").
+    Either,
+}
+
+impl FrictionMerit {
+    /// The merit of a pass after an active-set change (`after_change`) or not, from a state
+    /// with a pressure iterate (`has_iterate`) or not.
+    pub(crate) fn for_pass(
+        model: &Model,
+        opts: &NewtonOptions,
+        after_change: bool,
+        has_iterate: bool,
+    ) -> Self {
+        if model.is_potential() || !opts.pressure_iterate {
+            FrictionMerit::Displacement
+        } else if after_change {
+            FrictionMerit::Mixed
+        } else if has_iterate && opts.either_residual_merit {
+            FrictionMerit::Either
+        } else {
+            FrictionMerit::Displacement
+        }
+    }
+
+    /// The merit at the start of a Newton iteration, `st` with forces `f`, and the merit of a
+    /// trial state. [`FrictionMerit::Either`] measures each residual relative to its value at
+    /// `st`, and a trial by the smaller ratio (its start value 1): the line search's test
+    /// `m(α) < (1 − c α) m(0)` then passes where either residual passes it.
+    pub(crate) fn at(self, model: &Model, st: &State, f: &Forces) -> (f64, Box<Merit>) {
+        match self {
+            FrictionMerit::Displacement => {
+                (l2_norm(&f.resid), Box::new(|_, _, ft| l2_norm(&ft.resid)))
+            }
+            FrictionMerit::Mixed => (
+                mixed_residual_norm(model, st, f),
+                Box::new(mixed_residual_norm),
+            ),
+            FrictionMerit::Either => {
+                let start = [l2_norm(&f.resid), mixed_residual_norm(model, st, f)];
+                let ratio = |norm: f64, at_start: f64| match at_start > 0.0 {
+                    true => norm / at_start,
+                    false => f64::INFINITY,
+                };
+                let merit = move |m: &Model, t: &State, ft: &Forces| {
+                    let displacement = ratio(l2_norm(&ft.resid), start[0]);
+                    displacement.min(ratio(mixed_residual_norm(m, t, ft), start[1]))
+                };
+                (1.0, Box::new(merit))
+            }
+        }
+    }
+}
 
 /// The 2-norm of the mixed method's residual at `st`, given its assembled `forces`; the
 /// displacement method's residual `‖forces.resid‖₂` where `st` has no pressure iterate.

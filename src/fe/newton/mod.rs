@@ -7,8 +7,8 @@
 //! [`crate::fe::newton::friction_step`] (the factorisations are described in [`crate::fe::linsys`]), and one
 //! backtracking [`line_search`]: on the energy `Π` (Armijo) or, if the Newton direction is
 //! not a descent direction or the problem has friction, on a residual merit (in a frictional
-//! pass after an active-set change, the mixed method's residual,
-//! [`crate::fe::newton::mixed_residual`]). Inverted trial
+//! pass after an active-set change, the mixed method's residual, in one from the predictor's
+//! pressure iterate either that or the displacement method's, [`FrictionMerit`]). Inverted trial
 //! configurations (`J ≤ 0`) are backtracked. Convergence: `‖r‖∞ ≤ rtol · f_e + atol`, `f_e`
 //! the largest element-level nodal force (the round-off scale of the assembled residual) and
 //! `atol = residual_atol · (G + κ) λ`; an iteration whose correction is below
@@ -30,7 +30,7 @@ use crate::fe::model::{Model, State};
 use crate::fe::newton::assembly::{Assembly, Forces};
 use crate::fe::newton::friction_step::solve_newton_step;
 use crate::fe::newton::line_search::{line_search, Decrease};
-use crate::fe::newton::mixed_residual::mixed_residual_norm;
+use crate::fe::newton::mixed_residual::FrictionMerit;
 use crate::fe::{Kinematics, SolveOptions};
 
 /// A Newton correction this small (`∞`-norm, units of λ: a millionth of a millionth of the
@@ -126,8 +126,9 @@ pub(crate) struct Pass {
 /// Newton iterations at a fixed active set, to the residual tolerance of `pass`. Returns the
 /// number of iterations. With friction, a pass after an active-set change starts from a
 /// converged state, which has no pressure iterate: it is given one at its own pressures, and its
-/// line search measures the residual in the mixed method's variables
-/// ([`crate::fe::newton::mixed_residual`]).
+/// line search measures the residual in the mixed method's variables; a pass from the
+/// predictor's pressure iterate accepts a step where either that residual or the displacement
+/// method's falls enough ([`FrictionMerit`]).
 pub(crate) fn newton(
     model: &Model,
     asm: &mut Assembly,
@@ -138,10 +139,15 @@ pub(crate) fn newton(
     let rtol = pass.rtol;
     let mut last_res = f64::NAN;
     let mut last_step = f64::INFINITY;
-    let mixed_merit = pass.after_change && !model.is_potential() && opts.newton.pressure_iterate;
+    let merit = FrictionMerit::for_pass(
+        model,
+        &opts.newton,
+        pass.after_change,
+        st.pressure.is_some(),
+    );
     if !opts.newton.pressure_iterate {
         st.pressure = None;
-    } else if mixed_merit {
+    } else if merit == FrictionMerit::Mixed {
         model.start_pressure_iterate(st);
     }
     for it in 0..=opts.newton.max_iterations {
@@ -194,10 +200,7 @@ pub(crate) fn newton(
             continue;
         }
         let slope: f64 = f.resid.iter().zip(&dq).map(|(r, d)| r * d).sum();
-        let residual_norm = |m: &Model, t: &State, ft: &Forces| match mixed_merit {
-            true => mixed_residual_norm(m, t, ft),
-            false => l2_norm(&ft.resid),
-        };
+        let (initial, residual_merit) = merit.at(model, st, &f);
         let decrease = if slope < 0.0 && model.is_potential() {
             Decrease::Energy {
                 initial: f.energy,
@@ -205,8 +208,8 @@ pub(crate) fn newton(
             }
         } else {
             Decrease::Merit {
-                initial: residual_norm(model, st, &f),
-                merit: &residual_norm,
+                initial,
+                merit: residual_merit.as_ref(),
             }
         };
         match line_search(model, asm, opts.newton.max_line_search, trial_at, decrease) {
