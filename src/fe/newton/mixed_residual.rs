@@ -19,8 +19,12 @@
 
 use crate::fe::model::{Model, State};
 use crate::fe::newton::assembly::Forces;
-use crate::fe::newton::l2_norm;
 use crate::fe::NewtonOptions;
+
+/// The 2-norm of `v`.
+pub(crate) fn l2_norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
 
 /// A line-search merit: the value of a trial state given its forces.
 pub(crate) type Merit = dyn Fn(&Model, &State, &Forces) -> f64;
@@ -100,7 +104,7 @@ impl FrictionMerit {
 /// displacement method's residual `‖forces.resid‖₂` where `st` has no pressure iterate.
 pub(crate) fn mixed_residual_norm(model: &Model, st: &State, forces: &Forces) -> f64 {
     let Some(iterate) = model.iterate_forces(st, &forces.grad) else {
-        return forces.resid.iter().map(|r| r * r).sum::<f64>().sqrt();
+        return l2_norm(&forces.resid);
     };
     let map = model.slot_map(st);
     let mut resid = forces.resid.clone();

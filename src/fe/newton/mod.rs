@@ -30,7 +30,7 @@ use crate::fe::model::{Model, State};
 use crate::fe::newton::assembly::{Assembly, Forces};
 use crate::fe::newton::friction_step::solve_newton_step;
 use crate::fe::newton::line_search::{line_search, Decrease};
-use crate::fe::newton::mixed_residual::FrictionMerit;
+use crate::fe::newton::mixed_residual::{l2_norm, FrictionMerit};
 use crate::fe::{Kinematics, SolveOptions};
 
 /// A Newton correction this small (`∞`-norm, units of λ: a millionth of a millionth of the
@@ -65,10 +65,6 @@ pub(crate) fn residual_tolerance(
 ) -> f64 {
     let atol = opts.newton.residual_atol * (model.mat.g + model.mat.kappa);
     rtol * force_scale + atol
-}
-
-pub(crate) fn l2_norm(v: &[f64]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
 pub(crate) fn inf_norm(v: &[f64]) -> f64 {
