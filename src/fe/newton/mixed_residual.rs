@@ -34,8 +34,8 @@ pub(crate) type Merit = dyn Fn(&Model, &State, &Forces) -> f64;
 /// method's residual).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum FrictionMerit {
-    /// The displacement method's residual: a state without a pressure iterate, or a
-    /// frictionless one.
+    /// The displacement method's residual: a frictionless pass, a first pass from a state
+    /// without a pressure iterate, or one with [`NewtonOptions::either_residual_merit`] off.
     Displacement,
     /// The mixed method's residual ([`mixed_residual_norm`]): a pass after an active-set
     /// change, started from the converged state of the pass before with its own pressures as
